@@ -1,0 +1,43 @@
+// Conversions between the core's depth, point and mesh types and ROS
+// messages. Depth images follow REP 118: 32FC1 in metres with NaN for no
+// return, or 16UC1 in millimetres with 0 for no return.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <visualization_msgs/Marker.h>
+
+#include "surface_nbv/common.h"
+#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+void toImageMsg(const DepthImage& depth, const std_msgs::Header& header, sensor_msgs::Image* msg);
+
+// Reads a 32FC1 or 16UC1 image; checks encoding, size, step and buffer length.
+// Non-finite, zero or negative depths become NaN.
+Status fromImageMsg(const sensor_msgs::Image& msg, DepthImage* depth);
+
+void toCameraInfoMsg(const DepthCamera& camera, const std_msgs::Header& header, sensor_msgs::CameraInfo* msg);
+
+// An unorganised cloud with float32 x, y, z fields.
+void toPointCloud2Msg(const std::vector<Eigen::Vector3f>& points, const std_msgs::Header& header,
+                      sensor_msgs::PointCloud2* msg);
+
+// A TRIANGLE_LIST marker of `mesh` (grey, opaque).
+void toMeshMarker(const TriangleMesh& mesh, const std_msgs::Header& header, const std::string& ns,
+                  visualization_msgs::Marker* marker);
+
+// Converts a transform message, refusing non-finite values and quaternions
+// whose norm is off by more than 1e-3 (then normalising the rest).
+Status fromTransformMsg(const geometry_msgs::Transform& msg, Transform* T);
+
+}  // namespace surface_nbv

@@ -1,0 +1,39 @@
+// Parameters of the simulator nodes: the camera model lives in the shared
+// namespace (so mapper and planner read the same one), the scene and the
+// node's own settings under its private namespace.
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/ros/param_reader.h"
+#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/scene_source.h"
+
+namespace surface_nbv {
+
+// The depth_sim node's own settings.
+struct DepthSimConfig {
+  SceneConfig scene;
+  std::string shared_namespace = "/nbv";  // where camera/* lives
+  std::string world_frame = "world";
+  std::string camera_frame = "camera";
+  int render_threads = 2;
+  bool publish_points = false;
+  int points_stride = 2;         // every n-th row and column in depth/points
+  double tf_timeout = 0.05;      // s to wait for world -> camera at the frame time
+  double stats_period = 1.0;     // s between ~stats messages
+
+  Status validate() const;
+};
+
+// Reads `camera/...` keys relative to the reader's namespace.
+void readCameraConfig(ParamReader* reader, CameraConfig* config);
+// Reads `scene`, `scene_scale`, `scene_offset`, `crop_min`, `crop_max`.
+void readSceneConfig(ParamReader* reader, SceneConfig* config);
+
+// Loads and validates everything depth_sim needs: the node's private keys
+// from `priv` (unknown ones are errors), then camera/* from the shared
+// namespace that `~shared_namespace` names.
+Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, DepthSimConfig* config);
+
+}  // namespace surface_nbv

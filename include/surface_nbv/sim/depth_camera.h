@@ -1,0 +1,60 @@
+// Pinhole depth camera in the optical frame (z forward, x right, y down).
+// Pixel (col, row) has its centre at integer coordinates, as in ROS
+// CameraInfo: the image spans [-0.5, width - 0.5] and the principal point is
+// the image centre, so the outer pixel edges lie exactly on the FOV.
+// Depth is z in metres; anything outside [min_range, max_range] is no return.
+#pragma once
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+struct CameraConfig {
+  int width = 640;
+  int height = 480;
+  double hfov_deg = 90.0;
+  double vfov_deg = 60.0;
+  double min_range = 1.6;   // m, on z
+  double max_range = 8.0;   // m, on z
+  double rate_hz = 30.0;
+  // Stereo-like noise: sigma = noise_k * z^2 [1/m]; 0 disables it.
+  double noise_k = 0.0;
+  uint64_t noise_seed = 1;
+
+  // Names the first bad key, e.g. "camera/hfov_deg expected in (0, 180)".
+  Status validate() const;
+};
+
+class DepthCamera {
+ public:
+  explicit DepthCamera(const CameraConfig& config);
+
+  const CameraConfig& config() const { return config_; }
+  int width() const { return config_.width; }
+  int height() const { return config_.height; }
+  double fx() const { return fx_; }
+  double fy() const { return fy_; }
+  double cx() const { return cx_; }
+  double cy() const { return cy_; }
+
+  // Ray through pixel (col, row) in the optical frame, scaled so that z = 1:
+  // a hit at parameter t along it is at depth z = t.
+  Eigen::Vector3d pixelRay(double col, double row) const {
+    return Eigen::Vector3d((col - cx_) / fx_, (row - cy_) / fy_, 1.0);
+  }
+  // Projects p_C; false behind the camera or outside the image.
+  bool project(const Eigen::Vector3d& p_C, double* col, double* row) const;
+  // True if p_C projects inside the image and lies within the depth range.
+  bool sees(const Eigen::Vector3d& p_C) const;
+  bool depthInRange(double z) const { return z >= config_.min_range && z <= config_.max_range; }
+
+ private:
+  CameraConfig config_;
+  double fx_, fy_, cx_, cy_;
+};
+
+}  // namespace surface_nbv

@@ -1,0 +1,33 @@
+// camera_mount: publishes the static transform base_link -> camera optical
+// frame (z forward, x right, y down) of a level, forward-facing depth camera.
+// Parameters: ~body_frame, ~camera_frame, ~offset [x, y, z] in base_link.
+#include <ros/ros.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+
+#include "surface_nbv/ros/param_reader.h"
+#include "surface_nbv/sim/scripted_flight.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "camera_mount");
+  ros::NodeHandle priv("~");
+  std::string body_frame = "base_link", camera_frame = "camera";
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  surface_nbv::ParamReader reader(priv);
+  reader.get("body_frame", &body_frame);
+  reader.get("camera_frame", &camera_frame);
+  reader.get("offset", &offset);
+  reader.checkUnknown();
+  if (const surface_nbv::Status s = reader.status(); !s || !offset.allFinite() || body_frame == camera_frame) {
+    ROS_FATAL("camera_mount: bad parameter: %s", s ? "offset must be finite and frames distinct" : s.message().c_str());
+    return 2;
+  }
+  geometry_msgs::TransformStamped tf = tf2::eigenToTransform(surface_nbv::opticalInBody(offset));
+  tf.header.stamp = ros::Time(0);
+  tf.header.frame_id = body_frame;
+  tf.child_frame_id = camera_frame;
+  tf2_ros::StaticTransformBroadcaster broadcaster;
+  broadcaster.sendTransform(tf);
+  ros::spin();
+  return 0;
+}

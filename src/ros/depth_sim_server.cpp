@@ -1,0 +1,116 @@
+#include "surface_nbv/ros/depth_sim_server.h"
+
+#include <chrono>
+
+#include <visualization_msgs/Marker.h>
+
+#include "surface_nbv/ros/depth_conversions.h"
+#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sim/mesh_io.h"
+
+namespace surface_nbv {
+
+DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const CameraConfig& camera,
+                               const DepthSimConfig& config)
+    : nh_(nh),
+      priv_(priv),
+      camera_(camera),
+      config_(config),
+      tf_listener_(tf_buffer_),
+      stats_(priv_, "depth_sim", config.stats_period) {
+  status_ = loadScene(config_.scene, &mesh_);
+  if (status_) status_ = RaycastScene::create(mesh_, &scene_);
+  if (!status_) return;
+  renderer_ = std::make_unique<DepthRenderer>(*scene_, camera_, config_.render_threads);
+  const AlignedBox b = mesh_.bounds();
+  ROS_INFO("depth_sim: scene '%s', %zu triangles, bounds [%.1f %.1f %.1f] - [%.1f %.1f %.1f] m; camera %dx%d, "
+           "%.0fx%.0f deg, range [%.2f, %.2f] m, %.1f Hz",
+           config_.scene.scene.c_str(), mesh_.numTriangles(), b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(),
+           b.max.z(), camera.width, camera.height, camera.hfov_deg, camera.vfov_deg, camera.min_range,
+           camera.max_range, camera.rate_hz);
+
+  image_pub_ = nh_.advertise<sensor_msgs::Image>("depth/image", 2);
+  info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("depth/camera_info", 2);
+  if (config_.publish_points) points_pub_ = nh_.advertise<sensor_msgs::PointCloud2>("depth/points", 2);
+  mesh_pub_ = priv_.advertise<visualization_msgs::Marker>("ground_truth", 1, true);
+  visualization_msgs::Marker marker;
+  std_msgs::Header header;
+  header.frame_id = config_.world_frame;
+  toMeshMarker(mesh_, header, "ground_truth", &marker);
+  mesh_pub_.publish(marker);
+  export_srv_ = priv_.advertiseService("export_scene", &DepthSimServer::exportScene, this);
+  timer_ = nh_.createTimer(ros::Duration(1.0 / camera.rate_hz), &DepthSimServer::onTimer, this);
+}
+
+bool DepthSimServer::lookupPose(const ros::Time& stamp, Transform* T_W_C) {
+  geometry_msgs::TransformStamped tf;
+  try {
+    tf = tf_buffer_.lookupTransform(config_.world_frame, config_.camera_frame, stamp,
+                                    ros::Duration(config_.tf_timeout));
+  } catch (const tf2::TransformException& e) {
+    stats_.count("dropped_no_transform");
+    ROS_WARN_THROTTLE(5.0, "depth_sim: no transform %s -> %s at %.3f, frame dropped (%lu so far): %s",
+                      config_.world_frame.c_str(), config_.camera_frame.c_str(), stamp.toSec(),
+                      static_cast<unsigned long>(stats_.get("dropped_no_transform")), e.what());
+    return false;
+  }
+  if (Status s = fromTransformMsg(tf.transform, T_W_C); !s) {
+    stats_.count("dropped_bad_transform");
+    ROS_WARN_THROTTLE(5.0, "depth_sim: transform %s -> %s rejected, frame dropped: %s", config_.world_frame.c_str(),
+                      config_.camera_frame.c_str(), s.message().c_str());
+    return false;
+  }
+  return true;
+}
+
+void DepthSimServer::onTimer(const ros::TimerEvent&) {
+  const ros::Time stamp = ros::Time::now();
+  if (stamp.isZero()) {
+    stats_.count("waiting_for_clock");
+    return;
+  }
+  if (stamp <= last_stamp_) {
+    stats_.count("dropped_time_not_advancing");
+    return;
+  }
+  Transform T_W_C;
+  if (!lookupPose(stamp, &T_W_C)) return;
+  last_stamp_ = stamp;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  DepthImage depth;
+  renderer_->render(T_W_C, &depth, frame_index_++);
+  stats_.recordMs(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+
+  std_msgs::Header header;
+  header.stamp = stamp;
+  header.frame_id = config_.camera_frame;
+  sensor_msgs::CameraInfo info;
+  toCameraInfoMsg(camera_, header, &info);
+  sensor_msgs::Image image;
+  toImageMsg(depth, header, &image);
+  image_pub_.publish(image);
+  info_pub_.publish(info);
+  if (config_.publish_points && points_pub_.getNumSubscribers() > 0) {
+    std::vector<Eigen::Vector3f> points_C;
+    depthToPoints(camera_, depth, &points_C, config_.points_stride);
+    sensor_msgs::PointCloud2 cloud;
+    toPointCloud2Msg(points_C, header, &cloud);
+    points_pub_.publish(cloud);
+  }
+  stats_.count("frames_published");
+}
+
+bool DepthSimServer::exportScene(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res) {
+  if (req.path.empty()) {
+    res.code = 1;
+    res.message = "path is empty";
+    return true;
+  }
+  const Status s = saveMesh(mesh_, req.path);
+  res.code = s ? 0 : 2;
+  res.message = s ? "wrote " + std::to_string(mesh_.numTriangles()) + " triangles to " + req.path : s.message();
+  return true;
+}
+
+}  // namespace surface_nbv

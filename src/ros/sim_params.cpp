@@ -1,0 +1,65 @@
+#include "surface_nbv/ros/sim_params.h"
+
+#include <cmath>
+
+namespace surface_nbv {
+
+Status DepthSimConfig::validate() const {
+  if (Status s = scene.validate(); !s) return s;
+  if (world_frame.empty()) return Status::Error("world_frame expected a frame name");
+  if (camera_frame.empty() || camera_frame == world_frame) {
+    return Status::Error("camera_frame expected a frame name different from world_frame");
+  }
+  if (render_threads < 1 || render_threads > 64) return Status::Error("render_threads expected in [1, 64]");
+  if (points_stride < 1) return Status::Error("points_stride expected >= 1");
+  if (!std::isfinite(tf_timeout) || tf_timeout < 0.0 || tf_timeout > 1.0) {
+    return Status::Error("tf_timeout expected in [0, 1] s");
+  }
+  if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
+  return Status::Ok();
+}
+
+void readCameraConfig(ParamReader* reader, CameraConfig* c) {
+  reader->get("camera/width", &c->width);
+  reader->get("camera/height", &c->height);
+  reader->get("camera/hfov_deg", &c->hfov_deg);
+  reader->get("camera/vfov_deg", &c->vfov_deg);
+  reader->get("camera/min_range", &c->min_range);
+  reader->get("camera/max_range", &c->max_range);
+  reader->get("camera/rate_hz", &c->rate_hz);
+  reader->get("camera/noise_k", &c->noise_k);
+  reader->get("camera/noise_seed", &c->noise_seed);
+}
+
+void readSceneConfig(ParamReader* reader, SceneConfig* c) {
+  reader->get("scene", &c->scene);
+  reader->get("scene_scale", &c->transform.scale);
+  reader->get("scene_offset", &c->transform.offset);
+  reader->get("crop_min", &c->transform.crop.min);
+  reader->get("crop_max", &c->transform.crop.max);
+}
+
+Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, DepthSimConfig* config) {
+  ParamReader reader(priv);
+  reader.get("shared_namespace", &config->shared_namespace);
+  readSceneConfig(&reader, &config->scene);
+  reader.get("world_frame", &config->world_frame);
+  reader.get("camera_frame", &config->camera_frame);
+  reader.get("render_threads", &config->render_threads);
+  reader.get("publish_points", &config->publish_points);
+  reader.get("points_stride", &config->points_stride);
+  reader.get("tf_timeout", &config->tf_timeout);
+  reader.get("stats_period", &config->stats_period);
+  reader.checkUnknown();
+  if (Status s = reader.status(); !s) return s;
+  if (Status s = config->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());
+
+  ParamReader shared_reader(ros::NodeHandle(config->shared_namespace));
+  readCameraConfig(&shared_reader, camera);
+  shared_reader.checkUnknown("camera");
+  if (Status s = shared_reader.status(); !s) return s;
+  if (Status s = camera->validate(); !s) return Status::Error(shared_reader.ns() + "/" + s.message());
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv

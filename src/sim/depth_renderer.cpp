@@ -1,0 +1,110 @@
+#include "surface_nbv/sim/depth_renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+#include <vector>
+
+namespace surface_nbv {
+namespace {
+
+constexpr int kPacket = 8;
+constexpr int kRowsPerTask = 4;
+
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+double toUnit(uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
+
+}  // namespace
+
+float noisyDepth(float z, double k, uint64_t seed, uint64_t frame, uint64_t pixel) {
+  const uint64_t key = splitmix64(splitmix64(seed) ^ splitmix64(frame + 0x632BE59BD9B4E019ull) ^ pixel);
+  const double u1 = toUnit(splitmix64(key));
+  const double u2 = toUnit(splitmix64(key ^ 0xD1B54A32D192ED03ull));
+  const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  return static_cast<float>(z + k * static_cast<double>(z) * z * gauss);
+}
+
+DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads)
+    : scene_(scene), camera_(camera), threads_(std::max(1, threads)) {}
+
+void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t frame_index) const {
+  image->resize(camera_.width(), camera_.height());
+  const int height = camera_.height();
+  if (threads_ == 1) {
+    renderRows(T_W_C, 0, height, frame_index, image);
+    return;
+  }
+  std::atomic<int> next_row{0};
+  auto worker = [&]() {
+    for (int row = next_row.fetch_add(kRowsPerTask); row < height; row = next_row.fetch_add(kRowsPerTask)) {
+      renderRows(T_W_C, row, std::min(height, row + kRowsPerTask), frame_index, image);
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(threads_ - 1);
+  for (int t = 1; t < threads_; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,
+                               DepthImage* image) const {
+  const CameraConfig& cfg = camera_.config();
+  const Eigen::Matrix3d R = T_W_C.linear();
+  const Eigen::Vector3d o = T_W_C.translation();
+  const float min_z = static_cast<float>(cfg.min_range);
+  const float max_z = static_cast<float>(cfg.max_range);
+  const int width = camera_.width();
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(32) RTCRayHit8 packet;
+  alignas(32) int valid[kPacket];
+
+  for (int row = row_begin; row < row_end; ++row) {
+    float* out = &image->at(row, 0);
+    for (int col0 = 0; col0 < width; col0 += kPacket) {
+      for (int k = 0; k < kPacket; ++k) {
+        const int col = col0 + k;
+        valid[k] = col < width ? -1 : 0;
+        const Eigen::Vector3d d = R * camera_.pixelRay(std::min(col, width - 1), row);
+        packet.ray.org_x[k] = static_cast<float>(o.x());
+        packet.ray.org_y[k] = static_cast<float>(o.y());
+        packet.ray.org_z[k] = static_cast<float>(o.z());
+        packet.ray.dir_x[k] = static_cast<float>(d.x());
+        packet.ray.dir_y[k] = static_cast<float>(d.y());
+        packet.ray.dir_z[k] = static_cast<float>(d.z());
+        packet.ray.tnear[k] = 0.0f;
+        packet.ray.tfar[k] = max_z;
+        packet.ray.time[k] = 0.0f;
+        packet.ray.mask[k] = 0xFFFFFFFFu;
+        packet.ray.id[k] = static_cast<unsigned>(k);
+        packet.ray.flags[k] = 0;
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect8(valid, scene_.handle(), &context, &packet);
+      const int count = std::min(kPacket, width - col0);
+      for (int k = 0; k < count; ++k) {
+        float z = std::numeric_limits<float>::quiet_NaN();
+        if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
+          z = packet.ray.tfar[k];
+          if (cfg.noise_k > 0.0) {
+            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index, static_cast<uint64_t>(row) * width + col0 + k);
+          }
+          if (!(z >= min_z && z <= max_z)) z = std::numeric_limits<float>::quiet_NaN();
+        }
+        out[col0 + k] = z;
+      }
+    }
+  }
+}
+
+}  // namespace surface_nbv
