@@ -1,0 +1,132 @@
+// Parameter loading against a real parameter server: defaults, typed values,
+// bad values and misspelt keys are refused with a message naming the key.
+#include <gtest/gtest.h>
+
+#include <ros/ros.h>
+
+#include "surface_nbv/ros/scripted_flight_server.h"
+#include "surface_nbv/ros/sim_params.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+int counter = 0;
+
+// A fresh private namespace and shared namespace for each case.
+struct Namespaces {
+  std::string priv, shared;
+  Namespaces() {
+    const std::string n = std::to_string(counter++);
+    priv = "/case" + n + "/depth_sim";
+    shared = "/case" + n + "/nbv";
+    ros::param::set(priv + "/shared_namespace", shared);
+  }
+};
+
+Status load(const Namespaces& ns, CameraConfig* camera, DepthSimConfig* config) {
+  return loadDepthSimParams(ros::NodeHandle(ns.priv), camera, config);
+}
+
+}  // namespace
+
+TEST(ParamLoader, DefaultsWhenNothingIsSet) {
+  Namespaces ns;
+  CameraConfig camera;
+  DepthSimConfig config;
+  ASSERT_TRUE(load(ns, &camera, &config).ok());
+  EXPECT_EQ(camera.width, 640);
+  EXPECT_EQ(config.scene.scene, "plant");
+  EXPECT_EQ(config.world_frame, "world");
+}
+
+TEST(ParamLoader, ReadsSharedCameraAndPrivateScene) {
+  Namespaces ns;
+  ros::param::set(ns.shared + "/camera/width", 320);
+  ros::param::set(ns.shared + "/camera/max_range", 5);  // an int where a double is expected is fine
+  ros::param::set(ns.priv + "/scene", std::string("statue"));
+  ros::param::set(ns.priv + "/scene_scale", 0.5);
+  std::vector<double> crop_max = {1e9, 1e9, 15.0};
+  ros::param::set(ns.priv + "/crop_max", crop_max);
+  CameraConfig camera;
+  DepthSimConfig config;
+  const Status s = load(ns, &camera, &config);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(camera.width, 320);
+  EXPECT_DOUBLE_EQ(camera.max_range, 5.0);
+  EXPECT_EQ(config.scene.scene, "statue");
+  EXPECT_DOUBLE_EQ(config.scene.transform.scale, 0.5);
+  EXPECT_DOUBLE_EQ(config.scene.transform.crop.max.z(), 15.0);
+}
+
+TEST(ParamLoader, BadValuesNameTheKey) {
+  struct Case {
+    std::string key;
+    XmlRpc::XmlRpcValue value;
+    std::string expect;
+  };
+  std::vector<Case> cases = {
+      {"shared:camera/hfov_deg", XmlRpc::XmlRpcValue(190.0), "camera/hfov_deg"},
+      {"shared:camera/width", XmlRpc::XmlRpcValue(std::string("wide")), "camera/width"},
+      {"shared:camera/min_range", XmlRpc::XmlRpcValue(9.0), "camera/max_range"},
+      {"priv:render_threads", XmlRpc::XmlRpcValue(0), "render_threads"},
+      {"priv:scene_scale", XmlRpc::XmlRpcValue(-1.0), "scale"},
+      {"priv:tf_timeout", XmlRpc::XmlRpcValue(true), "tf_timeout"},
+      {"priv:camera_frame", XmlRpc::XmlRpcValue(std::string("world")), "camera_frame"},
+      {"priv:scene_offset", XmlRpc::XmlRpcValue(1.0), "scene_offset"},
+  };
+  for (const Case& c : cases) {
+    Namespaces ns;
+    const bool shared = c.key.rfind("shared:", 0) == 0;
+    const std::string key = c.key.substr(c.key.find(':') + 1);
+    ros::param::set((shared ? ns.shared : ns.priv) + "/" + key, c.value);
+    CameraConfig camera;
+    DepthSimConfig config;
+    const Status s = load(ns, &camera, &config);
+    EXPECT_FALSE(s.ok()) << c.key;
+    EXPECT_NE(s.message().find(c.expect), std::string::npos) << c.key << ": " << s.message();
+  }
+}
+
+TEST(ParamLoader, MisspeltKeysAreRefused) {
+  Namespaces ns;
+  ros::param::set(ns.priv + "/render_thread", 2);
+  CameraConfig camera;
+  DepthSimConfig config;
+  Status s = load(ns, &camera, &config);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("render_thread "), std::string::npos) << s.message();
+
+  Namespaces ns2;
+  ros::param::set(ns2.shared + "/camera/hfov", 90.0);
+  ros::param::set(ns2.shared + "/voxel_size", 0.3);  // shared keys of other nodes are fine
+  s = load(ns2, &camera, &config);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("camera/hfov "), std::string::npos) << s.message();
+}
+
+TEST(ParamLoader, ScriptedFlightParams) {
+  const std::string ns = "/flight_case";
+  std::vector<double> lo = {-1, -1, 0}, hi = {1, 1, 4}, alts = {1.0, 2.0};
+  ros::param::set(ns + "/target_min", lo);
+  ros::param::set(ns + "/target_max", hi);
+  ros::param::set(ns + "/altitudes", alts);
+  ScriptedFlightNodeConfig config;
+  ASSERT_TRUE(loadScriptedFlightParams(ros::NodeHandle(ns), &config).ok());
+  EXPECT_EQ(config.flight.altitudes.size(), 2u);
+  ros::param::set(ns + "/speed", -1.0);
+  const Status s = loadScriptedFlightParams(ros::NodeHandle(ns), &config);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("speed"), std::string::npos);
+  // target_max missing: the box stays empty and the node refuses to start.
+  ros::param::set("/flight_case2/target_min", lo);
+  ScriptedFlightNodeConfig fresh;
+  EXPECT_FALSE(loadScriptedFlightParams(ros::NodeHandle("/flight_case2"), &fresh).ok());
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_param_loader");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
