@@ -41,7 +41,7 @@ TEST(CoreIsRosFree, NoCoreFileIncludesRos) {
   size_t scanned = 0;
   std::vector<std::string> hits;
   for (const std::string& concern : kConcerns) {
-    for (const fs::path dir : {root / "src" / concern, root / "include" / "surface_nbv" / concern}) {
+    for (const fs::path& dir : {root / "src" / concern, root / "include" / "surface_nbv" / concern}) {
       if (!fs::exists(dir)) continue;
       for (const auto& entry : fs::recursive_directory_iterator(dir)) {
         if (!entry.is_regular_file()) continue;

@@ -147,6 +147,11 @@ Status saveMesh(const TriangleMesh& mesh, const std::string& path) {
   else if (ext == "stl") format = "stlb";
   else return Status::Error("cannot write '" + path + "': extension expected .ply or .stl");
   if (mesh.empty()) return Status::Error("cannot write '" + path + "': the mesh is empty");
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    if ((t.array() < 0).any() || (t.array() >= static_cast<int>(mesh.vertices.size())).any()) {
+      return Status::Error("cannot write '" + path + "': a triangle indexes a vertex that does not exist");
+    }
+  }
 
   auto scene = std::make_unique<aiScene>();
   scene->mRootNode = new aiNode();

@@ -157,7 +157,9 @@ TEST_F(DepthSimNodeTest, DropsWithoutTfThenPublishesAtRateWithPoseOfFrameTime) {
     ASSERT_EQ(img.step, 640u * 4u);
     ASSERT_EQ(img.data.size(), 640u * 480u * 4u);
     EXPECT_EQ(img.header.frame_id, "camera");
-    if (i > 0) EXPECT_GT(img.header.stamp, images[i - 1].header.stamp);
+    if (i > 0) {
+      EXPECT_GT(img.header.stamp, images[i - 1].header.stamp);
+    }
     // The depth matches the pose at the image's own stamp, not an older one.
     const double x = kX0 + kSpeed * (img.header.stamp - t0_).toSec();
     EXPECT_NEAR(centreDepth(img), -2.0 - x, 2e-3) << "image " << i;

@@ -63,7 +63,9 @@ TEST(SimLoop, DepthFramesOnSimulatedClockSeeTheBox) {
   ASSERT_GE(seen.stamps.size(), 60u) << "too few depth frames";
   for (size_t i = 0; i < seen.stamps.size(); ++i) {
     EXPECT_EQ(seen.frames[i], "camera");
-    if (i > 0) EXPECT_GT(seen.stamps[i], seen.stamps[i - 1]);
+    if (i > 0) {
+      EXPECT_GT(seen.stamps[i], seen.stamps[i - 1]);
+    }
     // Sim time starts at 1 s, far from wall time.
     EXPECT_LT(seen.stamps[i].toSec(), 1000.0) << "stamp is not simulated time";
     // Flying 4 m from the 4 m box, facing it, it fills a good part of the view.

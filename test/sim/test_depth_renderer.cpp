@@ -1,0 +1,727 @@
+#include "surface_nbv/sim/depth_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sim/mesh_builder.h"
+#include "surface_nbv/sim/procedural_scenes.h"
+#include "surface_nbv/sim/raycast_scene.h"
+
+namespace surface_nbv {
+namespace {
+
+using Eigen::Vector3d;
+
+// Appends the quad centre +- a +- b as two triangles.
+void addQuad(TriangleMesh* mesh, const Vector3d& c, const Vector3d& a, const Vector3d& b) {
+  const int base = static_cast<int>(mesh->vertices.size());
+  const Vector3d corners[4] = {c - a - b, c + a - b, c + a + b, c - a + b};
+  for (const Vector3d& p : corners) mesh->vertices.push_back(p.cast<float>());
+  mesh->triangles.emplace_back(base, base + 1, base + 2);
+  mesh->triangles.emplace_back(base, base + 2, base + 3);
+}
+
+// A square of half side `half` in the plane z = `z` of its frame.
+TriangleMesh planeAtZ(double z, double half = 50.0) {
+  TriangleMesh mesh;
+  addQuad(&mesh, Vector3d(0, 0, z), Vector3d(half, 0, 0), Vector3d(0, half, 0));
+  return mesh;
+}
+
+std::unique_ptr<RaycastScene> buildScene(const TriangleMesh& mesh) {
+  std::unique_ptr<RaycastScene> scene;
+  const Status s = RaycastScene::create(mesh, &scene);
+  EXPECT_TRUE(s.ok()) << s.message();
+  return scene;
+}
+
+// Optical frame at `position` with z along `forward` and x = forward x up.
+Transform lookAlong(const Vector3d& position, const Vector3d& forward, const Vector3d& up = Vector3d::UnitZ()) {
+  const Vector3d z = forward.normalized();
+  const Vector3d x = z.cross(up).normalized();
+  Transform T = Transform::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = z.cross(x);
+  T.linear().col(2) = z;
+  T.translation() = position;
+  return T;
+}
+
+DepthImage render(const RaycastScene& scene, const CameraConfig& config, const Transform& T_W_C, int threads = 1,
+                  uint64_t frame = 0) {
+  const DepthRenderer renderer(scene, DepthCamera(config), threads);
+  DepthImage image;
+  renderer.render(T_W_C, &image, frame);
+  return image;
+}
+
+// Number of pixels with |z - expected| >= tol (NaN counts as a miss).
+size_t countOff(const DepthImage& image, double expected, double tol) {
+  size_t off = 0;
+  for (float z : image.data) off += (std::isfinite(z) && std::abs(z - expected) < tol) ? 0 : 1;
+  return off;
+}
+
+CameraConfig oddCamera() {
+  CameraConfig config;
+  config.width = 161;
+  config.height = 121;
+  return config;
+}
+
+// ---- (a) a plane perpendicular to the optical axis ----
+
+TEST(DepthRenderer, FrontoParallelPlaneReadsExactDepthEverywhere) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  const CameraConfig config;
+  for (int threads : {1, 2, 3}) {
+    const DepthImage image = render(*scene, config, Transform::Identity(), threads);
+    ASSERT_EQ(image.width, 640);
+    ASSERT_EQ(image.height, 480);
+    ASSERT_EQ(image.data.size(), 640u * 480u);
+    EXPECT_EQ(image.validCount(), 640u * 480u) << threads << " threads";
+    EXPECT_EQ(countOff(image, 5.0, 1e-5), 0u) << threads << " threads";
+    EXPECT_NEAR(image.at(0, 0), 5.0, 1e-5);
+    EXPECT_NEAR(image.at(479, 639), 5.0, 1e-5);
+  }
+}
+
+TEST(DepthRenderer, WidthNotAMultipleOfThePacketSize) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  for (int width : {1, 7, 9, 101}) {
+    CameraConfig config;
+    config.width = width;
+    config.height = 13;
+    for (int threads : {1, 2}) {
+      const DepthImage image = render(*scene, config, Transform::Identity(), threads);
+      ASSERT_EQ(image.width, width);
+      ASSERT_EQ(image.data.size(), static_cast<size_t>(width) * 13);
+      EXPECT_EQ(countOff(image, 5.0, 1e-5), 0u) << "width " << width << ", " << threads << " threads";
+    }
+  }
+}
+
+TEST(DepthRenderer, RotatedCameraAboveGroundPlane) {
+  // World ground plane z = 0.75; camera 5 m above it looking straight down
+  // with an arbitrary yaw and horizontal position.
+  TriangleMesh mesh;
+  addQuad(&mesh, Vector3d(10, -20, 0.75), Vector3d(50, 0, 0), Vector3d(0, 50, 0));
+  const auto scene = buildScene(mesh);
+  ASSERT_NE(scene, nullptr);
+  for (double yaw : {0.0, 0.4, 2.1, -2.9}) {
+    const Transform T =
+        lookAlong(Vector3d(12.3, -17.9, 5.75), -Vector3d::UnitZ(), Vector3d(std::cos(yaw), std::sin(yaw), 0));
+    ASSERT_NEAR(T.linear().determinant(), 1.0, 1e-12);
+    for (int threads : {1, 2}) {
+      const DepthImage image = render(*scene, CameraConfig(), T, threads);
+      EXPECT_EQ(countOff(image, 5.0, 1e-5), 0u) << "yaw " << yaw << ", " << threads << " threads";
+    }
+  }
+}
+
+TEST(DepthRenderer, RotatedCameraFacingVerticalWall) {
+  for (double yaw : {0.3, 1.9, -1.2}) {
+    const Vector3d forward(std::cos(yaw), std::sin(yaw), 0.0);
+    const Vector3d side(-std::sin(yaw), std::cos(yaw), 0.0);
+    const Vector3d camera(-3.2, 4.4, 1.7);
+    TriangleMesh mesh;
+    addQuad(&mesh, camera + 5.0 * forward, 10.0 * side, Vector3d(0, 0, 10));
+    const auto scene = buildScene(mesh);
+    ASSERT_NE(scene, nullptr);
+    const Transform T = lookAlong(camera, forward);
+    for (int threads : {1, 2}) {
+      const DepthImage image = render(*scene, CameraConfig(), T, threads);
+      EXPECT_EQ(countOff(image, 5.0, 1e-5), 0u) << "yaw " << yaw << ", " << threads << " threads";
+    }
+  }
+}
+
+TEST(DepthRenderer, EmptyViewIsAllNaNAndImageIsResized) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  DepthImage image;
+  image.resize(3, 2);
+  image.data.assign(6, 1.0f);
+  // Looking away from the plane.
+  const DepthRenderer renderer(*scene, DepthCamera(CameraConfig()), 2);
+  renderer.render(lookAlong(Vector3d::Zero(), -Vector3d::UnitZ(), Vector3d::UnitX()), &image);
+  EXPECT_EQ(image.width, 640);
+  EXPECT_EQ(image.height, 480);
+  EXPECT_EQ(image.data.size(), 640u * 480u);
+  EXPECT_EQ(image.validCount(), 0u);
+}
+
+TEST(DepthRenderer, ThreadCountIsAtLeastOne) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera{CameraConfig()};
+  EXPECT_EQ(DepthRenderer(*scene, camera, 0).threads(), 1);
+  EXPECT_EQ(DepthRenderer(*scene, camera, -3).threads(), 1);
+  EXPECT_EQ(DepthRenderer(*scene, camera, 4).threads(), 4);
+  const DepthImage image = render(*scene, CameraConfig(), Transform::Identity(), 0);
+  EXPECT_EQ(countOff(image, 5.0, 1e-5), 0u);
+}
+
+// ---- (b) a tilted plane ----
+
+// The plane n . p = d (n unit) given in the camera frame at its identity
+// pose, carried into the world by T_W_C.
+struct TiltedPlane {
+  Vector3d n_C = Vector3d(0.35, -0.25, -1.0).normalized();
+  double d_C = n_C.dot(Vector3d(0, 0, 5));
+
+  TriangleMesh mesh(const Transform& T_W_C) const {
+    Vector3d a = n_C.cross(Vector3d::UnitX()).normalized();
+    Vector3d b = n_C.cross(a);
+    TriangleMesh m;
+    addQuad(&m, T_W_C * (d_C * n_C), T_W_C.linear() * (20.0 * a), T_W_C.linear() * (20.0 * b));
+    return m;
+  }
+  // Depth seen through pixel (col, row): the ray pixelRay * t meets the plane.
+  double depth(const DepthCamera& cam, int col, int row) const {
+    const double denom = n_C.dot(cam.pixelRay(col, row));
+    return d_C / denom;
+  }
+};
+
+TEST(DepthRenderer, TiltedPlaneMatchesAnalyticIntersection) {
+  const TiltedPlane plane;
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  Transform moved = Transform::Identity();
+  moved.linear() = Eigen::AngleAxisd(0.7, Vector3d(0.2, -1.0, 0.4).normalized()).toRotationMatrix();
+  moved.translation() = Vector3d(3.5, -1.25, 2.0);
+  for (const Transform& T_W_C : {Transform::Identity(), moved}) {
+    const auto scene = buildScene(plane.mesh(T_W_C));
+    ASSERT_NE(scene, nullptr);
+    const DepthImage image = render(*scene, config, T_W_C, 2);
+    size_t compared = 0, nan_expected = 0;
+    double min_depth = 1e9, max_depth = 0.0;
+    for (int row = 0; row < cam.height(); ++row) {
+      for (int col = 0; col < cam.width(); ++col) {
+        const double t = plane.depth(cam, col, row);
+        const float z = image.at(row, col);
+        if (t >= config.min_range + 1e-3 && t <= config.max_range - 1e-3) {
+          ASSERT_TRUE(std::isfinite(z)) << col << " " << row << " expected " << t;
+          ASSERT_NEAR(z, t, 1e-4) << col << " " << row;
+          min_depth = std::min(min_depth, t);
+          max_depth = std::max(max_depth, t);
+          ++compared;
+        } else if (t > config.max_range + 1e-3) {
+          ASSERT_TRUE(std::isnan(z)) << col << " " << row << " beyond range, got " << z;
+          ++nan_expected;
+        }
+      }
+    }
+    // The tilt spreads depths over the whole range and beyond it.
+    EXPECT_GT(compared, 200000u);
+    EXPECT_GT(nan_expected, 10000u);
+    EXPECT_LT(min_depth, 3.5);
+    EXPECT_GT(max_depth, 7.9);
+  }
+}
+
+// ---- (c) a sphere ----
+
+// Smaller root of |o + t w - c| = r, or NaN on a miss.
+double raySphere(const Vector3d& o, const Vector3d& w, const Vector3d& c, double r) {
+  const Vector3d oc = o - c;
+  const double a = w.squaredNorm(), b = oc.dot(w), q = oc.squaredNorm() - r * r;
+  const double disc = b * b - a * q;
+  if (disc < 0.0) return std::nan("");
+  return (-b - std::sqrt(disc)) / a;
+}
+
+TEST(DepthRenderer, SphereDepthWithinTessellationError) {
+  const Vector3d center(1.0, 2.0, 3.0);
+  const double r = 1.0;
+  const int rings = 128, segments = 256;
+  MeshBuilder b;
+  b.addSphere(center, r, rings, segments);
+  const auto scene = buildScene(b.mesh());
+  ASSERT_NE(scene, nullptr);
+  // Every triangle spans at most this angle between its vertices, so every
+  // point on it is at least r cos(alpha) from the centre and at most r.
+  const double alpha = M_PI / rings + 2.0 * M_PI / segments;
+  const double r_in = r * std::cos(alpha);
+
+  const CameraConfig config = oddCamera();
+  const DepthCamera cam(config);
+  const double distance = 5.0;
+  const Vector3d view_dir = Vector3d(-0.6, 0.3, -0.5).normalized();
+  const Transform T = lookAlong(center - distance * view_dir, view_dir);
+  const DepthImage image = render(*scene, config, T, 2);
+
+  // The centre pixel looks at the sphere centre.
+  ASSERT_DOUBLE_EQ(cam.cx(), 80.0);
+  ASSERT_DOUBLE_EQ(cam.cy(), 60.0);
+  const float zc = image.at(60, 80);
+  EXPECT_GE(zc, distance - r - 1e-5);
+  EXPECT_LE(zc, distance - r_in + 1e-5);
+  EXPECT_LT(r - r_in, 3e-3);
+
+  size_t inside = 0, outside = 0, band = 0;
+  for (int row = 0; row < cam.height(); ++row) {
+    for (int col = 0; col < cam.width(); ++col) {
+      const Vector3d w = T.linear() * cam.pixelRay(col, row);
+      const double t_outer = raySphere(T.translation(), w, center, r);
+      const double t_inner = raySphere(T.translation(), w, center, r_in);
+      const float z = image.at(row, col);
+      if (std::isnan(t_outer)) {
+        ASSERT_TRUE(std::isnan(z)) << "silhouette leak at " << col << " " << row << ": " << z;
+        ++outside;
+      } else if (!std::isnan(t_inner)) {
+        ASSERT_TRUE(std::isfinite(z)) << col << " " << row;
+        ASSERT_GE(z, t_outer - 1e-5) << col << " " << row;
+        ASSERT_LE(z, t_inner + 1e-5) << col << " " << row;
+        ++inside;
+      } else {
+        ++band;
+      }
+    }
+  }
+  // The sphere subtends asin(1/5) = 11.5 deg: a disc of radius tan(11.5 deg)
+  // on the z = 1 plane, an ellipse of pi fx fy tan^2 = 1104 pixels.
+  const double tan_half = std::tan(std::asin(r / distance));
+  EXPECT_NEAR(static_cast<double>(inside), M_PI * cam.fx() * cam.fy() * tan_half * tan_half, 60.0);
+  EXPECT_LT(band, 60u);
+  EXPECT_EQ(inside + outside + band, 161u * 121u);
+  EXPECT_EQ(image.validCount() >= inside, true);
+  EXPECT_LE(image.validCount(), inside + band);
+}
+
+// ---- (d) a cube corner ----
+
+TEST(DepthRenderer, CubeCornerFacesMatchAnalyticPlanes) {
+  const Vector3d lo(0, 0, 0), hi(2, 2, 2);
+  MeshBuilder b;
+  b.addAlignedBox(lo, hi);
+  const auto scene = buildScene(b.mesh());
+  ASSERT_NE(scene, nullptr);
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  const Transform T = lookAlong(Vector3d(4.5, 4.5, 4.5), Vector3d(-1, -1, -1));
+  const DepthImage image = render(*scene, config, T, 2);
+  const Vector3d o = T.translation();
+
+  int per_face[3] = {0, 0, 0};
+  size_t misses = 0;
+  const double edge = 2e-3;
+  for (int row = 0; row < cam.height(); ++row) {
+    for (int col = 0; col < cam.width(); ++col) {
+      const Vector3d w = T.linear() * cam.pixelRay(col, row);
+      // The ray meets the faces x = 2, y = 2, z = 2 (those facing the camera).
+      int face = -1;
+      double t_hit = 0.0;
+      bool near_edge = false, near_box = false;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double t = (hi[axis] - o[axis]) / w[axis];
+        const Vector3d p = o + t * w;
+        bool in = true, in_grown = true;
+        for (int k = 0; k < 3; ++k) {
+          if (k == axis) continue;
+          in = in && p[k] >= lo[k] && p[k] <= hi[k];
+          in_grown = in_grown && p[k] >= lo[k] - edge && p[k] <= hi[k] + edge;
+          near_edge = near_edge || (in_grown && (std::abs(p[k] - lo[k]) < edge || std::abs(p[k] - hi[k]) < edge));
+        }
+        near_box = near_box || in_grown;
+        if (in) {
+          face = axis;
+          t_hit = t;
+        }
+      }
+      const float z = image.at(row, col);
+      if (near_edge) continue;
+      if (face < 0) {
+        if (!near_box) {
+          ASSERT_TRUE(std::isnan(z)) << col << " " << row << ": " << z;
+          ++misses;
+        }
+        continue;
+      }
+      ASSERT_TRUE(std::isfinite(z)) << col << " " << row;
+      ASSERT_NEAR(z, t_hit, 1e-4) << "face " << face << " pixel " << col << " " << row;
+      ++per_face[face];
+    }
+  }
+  // The corner (2, 2, 2) is on the optical axis at 2.5 sqrt(3) m.
+  EXPECT_NEAR(image.at(239, 319), 2.5 * std::sqrt(3.0), 0.02);
+  // The view is threefold symmetric about the optical axis, so the three faces
+  // cover equal areas of the z = 1 plane and nearly equal pixel counts.
+  const double mean = (per_face[0] + per_face[1] + per_face[2]) / 3.0;
+  EXPECT_GT(mean, 8000.0);
+  for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(per_face[axis], mean, 0.02 * mean) << "face " << axis;
+  EXPECT_GT(misses, 100000u);
+}
+
+// ---- (e) range limits ----
+
+TEST(DepthRenderer, PlaneCloserThanMinRangeIsNotSeen) {
+  const auto scene = buildScene(planeAtZ(1.0));
+  ASSERT_NE(scene, nullptr);
+  EXPECT_EQ(render(*scene, CameraConfig(), Transform::Identity()).validCount(), 0u);
+}
+
+TEST(DepthRenderer, ObjectCloserThanMinRangeOccludesTheWallBehind) {
+  TriangleMesh mesh = planeAtZ(6.0);
+  // A 0.6 x 0.6 m plate at 1 m: |x / z| and |y / z| up to 0.3.
+  addQuad(&mesh, Vector3d(0, 0, 1.0), Vector3d(0.3, 0, 0), Vector3d(0, 0.3, 0));
+  const auto scene = buildScene(mesh);
+  ASSERT_NE(scene, nullptr);
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  for (int threads : {1, 2}) {
+    const DepthImage image = render(*scene, config, Transform::Identity(), threads);
+    size_t nan_inside = 0;
+    for (int row = 0; row < cam.height(); ++row) {
+      for (int col = 0; col < cam.width(); ++col) {
+        const Vector3d ray = cam.pixelRay(col, row);
+        const float z = image.at(row, col);
+        if (std::abs(ray.x()) < 0.3 && std::abs(ray.y()) < 0.3) {
+          ASSERT_TRUE(std::isnan(z)) << "saw through the plate at " << col << " " << row << ": " << z;
+          ++nan_inside;
+        } else {
+          ASSERT_NEAR(z, 6.0, 1e-5) << col << " " << row;
+        }
+      }
+    }
+    // Columns 224..415 and rows 115..364.
+    EXPECT_EQ(nan_inside, 192u * 250u);
+    EXPECT_EQ(image.validCount(), 640u * 480u - 192u * 250u);
+  }
+}
+
+TEST(DepthRenderer, PlaneBeyondMaxRangeIsNotSeen) {
+  const auto scene = buildScene(planeAtZ(9.0));
+  ASSERT_NE(scene, nullptr);
+  EXPECT_EQ(render(*scene, CameraConfig(), Transform::Identity()).validCount(), 0u);
+  const auto just_beyond = buildScene(planeAtZ(8.01));
+  ASSERT_NE(just_beyond, nullptr);
+  EXPECT_EQ(render(*just_beyond, CameraConfig(), Transform::Identity()).validCount(), 0u);
+}
+
+TEST(DepthRenderer, PlanesJustInsideTheRangeAreSeen) {
+  for (double z : {7.99, 1.61}) {
+    const auto scene = buildScene(planeAtZ(z));
+    ASSERT_NE(scene, nullptr);
+    const DepthImage image = render(*scene, CameraConfig(), Transform::Identity());
+    EXPECT_EQ(image.validCount(), 640u * 480u) << z;
+    EXPECT_EQ(countOff(image, z, 1e-5), 0u) << z;
+  }
+}
+
+TEST(DepthRenderer, CustomRangeIsApplied) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  CameraConfig config;
+  config.max_range = 4.5;
+  EXPECT_EQ(render(*scene, config, Transform::Identity()).validCount(), 0u);
+  config.max_range = 20.0;
+  config.min_range = 5.5;
+  EXPECT_EQ(render(*scene, config, Transform::Identity()).validCount(), 0u);
+  config.min_range = 0.0;
+  EXPECT_EQ(countOff(render(*scene, config, Transform::Identity()), 5.0, 1e-5), 0u);
+}
+
+// ---- (f) FOV edges ----
+
+// A wall at z = 6 and two thin plates at z = 4 facing the camera: one whose
+// tangent range [0.997, 0.9995] holds only the outermost pixel ray (tangent
+// 319.5 / 320 = 0.9984) on the `inside_sign` side, one just outside the FOV
+// (tangent [1.0005, 1.05]) on the other side. `axis` 0 puts them at the left
+// and right image edges, 1 at the top and bottom.
+TriangleMesh fovEdgeScene(int axis, double inside_sign, double edge_tan) {
+  TriangleMesh mesh = planeAtZ(6.0);
+  const int other = 1 - axis;
+  auto plate = [&](double tan0, double tan1) {
+    Vector3d c(0, 0, 4.0), a = Vector3d::Zero(), b = Vector3d::Zero();
+    c[axis] = 4.0 * 0.5 * (tan0 + tan1);
+    a[axis] = 4.0 * 0.5 * (tan1 - tan0);
+    b[other] = 0.4;
+    addQuad(&mesh, c, a, b);
+  };
+  plate(inside_sign * 0.997 * edge_tan, inside_sign * 0.9995 * edge_tan);
+  plate(-inside_sign * 1.0005 * edge_tan, -inside_sign * 1.05 * edge_tan);
+  return mesh;
+}
+
+TEST(DepthRenderer, HorizontalFovEdgeColumns) {
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  const int w = cam.width();
+  for (double sign : {1.0, -1.0}) {
+    const auto scene = buildScene(fovEdgeScene(0, sign, 1.0));
+    ASSERT_NE(scene, nullptr);
+    const DepthImage image = render(*scene, config, Transform::Identity(), 2);
+    const int edge = sign > 0 ? w - 1 : 0;
+    const int next = sign > 0 ? w - 2 : 1;
+    const int far_edge = sign > 0 ? 0 : w - 1;
+    // The plates span |y / z| <= 0.1: rows 198..281.
+    size_t plate_pixels = 0;
+    for (int row = 0; row < cam.height(); ++row) {
+      const bool on_plate = std::abs(cam.pixelRay(0, row).y()) < 0.1;
+      EXPECT_NEAR(image.at(row, edge), on_plate ? 4.0 : 6.0, 1e-5) << "row " << row << " sign " << sign;
+      EXPECT_NEAR(image.at(row, next), 6.0, 1e-5) << "row " << row;
+      EXPECT_NEAR(image.at(row, far_edge), 6.0, 1e-5) << "row " << row;
+      plate_pixels += on_plate ? 1 : 0;
+    }
+    EXPECT_EQ(plate_pixels, 84u);
+    EXPECT_EQ(image.validCount(), 640u * 480u);
+    EXPECT_EQ(countOff(image, 6.0, 1e-5), 84u) << "only the edge column sees a plate";
+  }
+}
+
+TEST(DepthRenderer, VerticalFovEdgeRows) {
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  const int h = cam.height();
+  const double edge_tan = std::tan(30.0 * M_PI / 180.0);
+  // The outermost row ray has tangent 239.5 / fy = 0.99792 tan(30 deg), the
+  // next one 0.99375 tan(30 deg): only the outermost one meets the plate.
+  ASSERT_GT(std::abs(cam.pixelRay(0, h - 1).y()), 0.997 * edge_tan);
+  ASSERT_LT(std::abs(cam.pixelRay(0, h - 2).y()), 0.997 * edge_tan);
+  for (double sign : {1.0, -1.0}) {
+    const auto scene = buildScene(fovEdgeScene(1, sign, edge_tan));
+    ASSERT_NE(scene, nullptr);
+    const DepthImage image = render(*scene, config, Transform::Identity(), 2);
+    const int edge = sign > 0 ? h - 1 : 0;
+    const int next = sign > 0 ? h - 2 : 1;
+    const int far_edge = sign > 0 ? 0 : h - 1;
+    size_t plate_pixels = 0;
+    for (int col = 0; col < cam.width(); ++col) {
+      const bool on_plate = std::abs(cam.pixelRay(col, 0).x()) < 0.1;
+      EXPECT_NEAR(image.at(edge, col), on_plate ? 4.0 : 6.0, 1e-5) << "col " << col << " sign " << sign;
+      EXPECT_NEAR(image.at(next, col), 6.0, 1e-5) << "col " << col;
+      EXPECT_NEAR(image.at(far_edge, col), 6.0, 1e-5) << "col " << col;
+      plate_pixels += on_plate ? 1 : 0;
+    }
+    EXPECT_EQ(plate_pixels, 64u);
+    EXPECT_EQ(countOff(image, 6.0, 1e-5), 64u);
+  }
+}
+
+// ---- (g) noise ----
+
+struct Stats {
+  double mean = 0.0, stddev = 0.0, within_one_sigma = 0.0;
+  size_t n = 0;
+};
+
+Stats noiseStats(const DepthImage& image, double truth, double sigma) {
+  Stats s;
+  double sum = 0.0, sum2 = 0.0;
+  size_t within = 0;
+  for (float z : image.data) {
+    if (!std::isfinite(z)) continue;
+    const double e = z - truth;
+    sum += e;
+    sum2 += e * e;
+    within += std::abs(e) <= sigma ? 1 : 0;
+    ++s.n;
+  }
+  s.mean = sum / s.n;
+  s.stddev = std::sqrt(sum2 / s.n - s.mean * s.mean);
+  s.within_one_sigma = static_cast<double>(within) / s.n;
+  return s;
+}
+
+TEST(DepthRenderer, NoiseHasSigmaKZSquared) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  CameraConfig config;
+  config.noise_k = 0.01;
+  config.noise_seed = 7;
+  const DepthImage image = render(*scene, config, Transform::Identity(), 2, 3);
+  const double sigma = 0.01 * 5.0 * 5.0;
+  const Stats s = noiseStats(image, 5.0, sigma);
+  ASSERT_EQ(s.n, 640u * 480u);  // 5 +- 12 sigma stays inside [1.6, 8]
+  EXPECT_NEAR(s.stddev, sigma, 0.05 * sigma);
+  EXPECT_NEAR(s.stddev, sigma, 0.01 * sigma);
+  EXPECT_NEAR(s.mean, 0.0, 4.0 * sigma / std::sqrt(static_cast<double>(s.n)));
+  // Gaussian: 68.27 % within one sigma (binomial sd 0.08 %).
+  EXPECT_NEAR(s.within_one_sigma, 0.6827, 0.005);
+}
+
+TEST(DepthRenderer, NoiseIsAPureFunctionOfSeedFrameAndPixel) {
+  const auto scene = buildScene(planeAtZ(5.0));
+  ASSERT_NE(scene, nullptr);
+  CameraConfig config;
+  config.noise_k = 0.01;
+  config.noise_seed = 42;
+  const DepthImage one = render(*scene, config, Transform::Identity(), 1, 9);
+  const DepthImage two = render(*scene, config, Transform::Identity(), 2, 9);
+  const DepthImage three = render(*scene, config, Transform::Identity(), 3, 9);
+  ASSERT_EQ(one.data.size(), two.data.size());
+  EXPECT_TRUE(one.data == two.data);
+  EXPECT_TRUE(one.data == three.data);
+  EXPECT_TRUE(one.data == render(*scene, config, Transform::Identity(), 1, 9).data);
+  // Pixel (row, col) is keyed by row * width + col.
+  for (int row : {0, 17, 240, 479}) {
+    for (int col : {0, 5, 319, 639}) {
+      const float expected = noisyDepth(5.0f, 0.01, 42, 9, static_cast<uint64_t>(row) * 640 + col);
+      EXPECT_NEAR(one.at(row, col), expected, 2e-5) << row << " " << col;
+    }
+  }
+
+  auto differing = [](const DepthImage& a, const DepthImage& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.data.size(); ++i) n += a.data[i] != b.data[i] ? 1 : 0;
+    return n;
+  };
+  const DepthImage next_frame = render(*scene, config, Transform::Identity(), 2, 10);
+  EXPECT_GT(differing(one, next_frame), 640u * 480u * 99 / 100);
+  config.noise_seed = 43;
+  const DepthImage other_seed = render(*scene, config, Transform::Identity(), 2, 9);
+  EXPECT_GT(differing(one, other_seed), 640u * 480u * 99 / 100);
+}
+
+TEST(DepthRenderer, NoisyDepthFunction) {
+  EXPECT_EQ(noisyDepth(5.0f, 0.0, 1, 2, 3), 5.0f);
+  EXPECT_EQ(noisyDepth(5.0f, 0.01, 1, 2, 3), noisyDepth(5.0f, 0.01, 1, 2, 3));
+  EXPECT_NE(noisyDepth(5.0f, 0.01, 1, 2, 3), noisyDepth(5.0f, 0.01, 1, 2, 4));
+  // The deviation scales with k z^2 for the same draw.
+  const double d5 = noisyDepth(5.0f, 0.01, 1, 2, 3) - 5.0;
+  const double d2 = noisyDepth(2.0f, 0.01, 1, 2, 3) - 2.0;
+  ASSERT_GT(std::abs(d5), 1e-4);
+  EXPECT_NEAR(d2 / d5, 4.0 / 25.0, 1e-4);
+}
+
+TEST(DepthRenderer, NoisyDepthsOutsideTheRangeAreDropped) {
+  const auto scene = buildScene(planeAtZ(7.5));
+  ASSERT_NE(scene, nullptr);
+  CameraConfig config;
+  config.noise_k = 0.01;
+  const DepthImage image = render(*scene, config, Transform::Identity(), 2);
+  for (float z : image.data) {
+    if (std::isfinite(z)) {
+      ASSERT_LE(z, 8.0f);
+    }
+  }
+  // P(7.5 + 0.5625 g > 8) = 1 - Phi(0.8889) = 0.1870.
+  const double dropped = 1.0 - static_cast<double>(image.validCount()) / image.data.size();
+  EXPECT_NEAR(dropped, 0.1870, 0.005);
+}
+
+// ---- (h) back-projection ----
+
+TEST(DepthRenderer, DepthToPointsLieOnThePlane) {
+  const TiltedPlane plane;
+  const CameraConfig config;
+  const DepthCamera cam(config);
+  const auto scene = buildScene(plane.mesh(Transform::Identity()));
+  ASSERT_NE(scene, nullptr);
+  const DepthImage image = render(*scene, config, Transform::Identity());
+  std::vector<Eigen::Vector3f> points;
+  ASSERT_TRUE(depthToPoints(cam, image, &points));
+  ASSERT_EQ(points.size(), image.validCount());
+  ASSERT_GT(points.size(), 200000u);
+  size_t i = 0;
+  for (int row = 0; row < cam.height(); ++row) {
+    for (int col = 0; col < cam.width(); ++col) {
+      const float z = image.at(row, col);
+      if (!std::isfinite(z)) continue;
+      const Eigen::Vector3f& p = points[i++];
+      ASSERT_EQ(p.z(), z) << col << " " << row;
+      ASSERT_NEAR(p.x(), (col - cam.cx()) / cam.fx() * z, 1e-5);
+      ASSERT_NEAR(p.y(), (row - cam.cy()) / cam.fy() * z, 1e-5);
+      ASSERT_NEAR(plane.n_C.dot(p.cast<double>()), plane.d_C, 1e-4) << col << " " << row;
+    }
+  }
+  EXPECT_EQ(i, points.size());
+
+  std::vector<Eigen::Vector3f> strided;
+  ASSERT_TRUE(depthToPoints(cam, image, &strided, 3));
+  size_t expected = 0;
+  for (int row = 0; row < cam.height(); row += 3) {
+    for (int col = 0; col < cam.width(); col += 3) expected += std::isfinite(image.at(row, col)) ? 1 : 0;
+  }
+  EXPECT_EQ(strided.size(), expected);
+}
+
+TEST(DepthRenderer, DepthToPointsRejectsSizeMismatch) {
+  const DepthCamera cam{CameraConfig()};
+  DepthImage image;
+  image.resize(320, 240);
+  image.data.assign(image.data.size(), 3.0f);
+  std::vector<Eigen::Vector3f> points(5, Eigen::Vector3f::Ones());
+  EXPECT_FALSE(depthToPoints(cam, image, &points));
+  EXPECT_TRUE(points.empty());
+  image.resize(640, 479);
+  points.assign(2, Eigen::Vector3f::Ones());
+  EXPECT_FALSE(depthToPoints(cam, image, &points));
+  EXPECT_TRUE(points.empty());
+}
+
+// ---- (i) procedural scenes in the world frame ----
+
+TEST(DepthRenderer, ProceduralBoxFromMinusX) {
+  TriangleMesh mesh;
+  ASSERT_TRUE(makeProceduralScene("box", &mesh).ok());
+  const auto scene = buildScene(mesh);
+  ASSERT_NE(scene, nullptr);
+  Transform T = Transform::Identity();
+  T.linear().col(0) = Vector3d(0, -1, 0);
+  T.linear().col(1) = Vector3d(0, 0, -1);
+  T.linear().col(2) = Vector3d(1, 0, 0);
+  T.translation() = Vector3d(-6, 0, 2);
+  EXPECT_TRUE(T.isApprox(lookAlong(Vector3d(-6, 0, 2), Vector3d::UnitX())));
+  const DepthImage image = render(*scene, CameraConfig(), T, 2);
+  for (int row : {239, 240}) {
+    for (int col : {319, 320}) EXPECT_NEAR(image.at(row, col), 4.0, 1e-5) << row << " " << col;
+  }
+  // The face x = -2 spans |x / z| <= 0.5 (columns 160..479) and |y / z| <=
+  // 0.5 (rows 32..447), all at depth 4.
+  EXPECT_EQ(image.validCount(), 320u * 416u);
+  EXPECT_EQ(countOff(image, 4.0, 1e-5), 640u * 480u - 320u * 416u);
+  EXPECT_TRUE(std::isnan(image.at(240, 159)));
+  EXPECT_NEAR(image.at(240, 160), 4.0, 1e-5);
+  EXPECT_NEAR(image.at(240, 479), 4.0, 1e-5);
+  EXPECT_TRUE(std::isnan(image.at(240, 480)));
+  EXPECT_TRUE(std::isnan(image.at(31, 320)));
+  EXPECT_NEAR(image.at(32, 320), 4.0, 1e-5);
+  EXPECT_NEAR(image.at(447, 320), 4.0, 1e-5);
+  EXPECT_TRUE(std::isnan(image.at(448, 320)));
+  // World y = +2 (left of the camera) is on the left: column 160.
+  EXPECT_TRUE(std::isfinite(image.at(240, 160)));
+}
+
+TEST(DepthRenderer, ProceduralSphereFromMinusX) {
+  TriangleMesh mesh;
+  ASSERT_TRUE(makeProceduralScene("sphere", &mesh).ok());
+  const auto scene = buildScene(mesh);
+  ASSERT_NE(scene, nullptr);
+  const CameraConfig config = oddCamera();
+  const DepthImage image = render(*scene, config, lookAlong(Vector3d(-6, 0, 2), Vector3d::UnitX()));
+  // Radius 2 at distance 6; 32 rings x 64 segments give facets at most
+  // 2 (1 - cos(pi / 16)) = 0.038 m inside the sphere.
+  const float zc = image.at(60, 80);
+  EXPECT_GE(zc, 4.0 - 1e-5);
+  EXPECT_LE(zc, 4.0 + 2.0 * (1.0 - std::cos(M_PI / 16)));
+}
+
+TEST(DepthRenderer, ProceduralRoomPillarTooCloseIsNotSeenThrough) {
+  TriangleMesh mesh;
+  ASSERT_TRUE(makeProceduralScene("room", &mesh).ok());
+  const auto scene = buildScene(mesh);
+  ASSERT_NE(scene, nullptr);
+  const DepthImage image = render(*scene, CameraConfig(), lookAlong(Vector3d(0, 0, 2), Vector3d::UnitX()));
+  // Straight ahead: the wall x = 5.
+  EXPECT_NEAR(image.at(239, 319), 5.0, 1e-5);
+  EXPECT_NEAR(image.at(240, 320), 5.0, 1e-5);
+  // The left edge column meets the pillar face x = 1.5 at y = 1.497: 1.5 m is
+  // below the 1.6 m minimum range, so no return (not the wall behind it).
+  EXPECT_TRUE(std::isnan(image.at(240, 0)));
+  // The right edge column meets the wall y = -4 at depth 4 / 0.9984.
+  EXPECT_NEAR(image.at(240, 639), 4.0 / (319.5 / 320.0), 1e-4);
+}
+
+}  // namespace
+}  // namespace surface_nbv
