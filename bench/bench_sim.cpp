@@ -19,7 +19,8 @@ namespace {
 struct LoadedScene {
   TriangleMesh mesh;
   std::unique_ptr<RaycastScene> scene;
-  std::vector<Transform> poses;
+  std::vector<Transform> poses;        // along the flight, some looking past the structure
+  std::vector<Transform> dense_poses;  // those that see it in at least 40 % of the pixels
 };
 
 std::string powerplantPath() { return std::string(NBV_SOURCE_DIR) + "/../shared/scenes/powerplant.dae"; }
@@ -40,38 +41,105 @@ const LoadedScene* getScene(const std::string& name) {
     cache[name] = nullptr;
     return nullptr;
   }
-  const ScriptedFlight flight(flightAround(loaded->mesh.bounds(), 5.0, 2, 0.5));
-  for (int i = 0; i < 64; ++i) loaded->poses.push_back(flight.poseAtDistance(flight.length() * i / 64.0) * opticalInBody());
+  const ScriptedFlight flight(flightAround(loaded->mesh.bounds(), 3.0, 3, 0.5));
+  const DepthCamera camera{CameraConfig()};
+  const DepthRenderer renderer(*loaded->scene, camera, 2);
+  DepthImage depth;
+  for (int i = 0; i < 256; ++i) {
+    const Transform T_W_C = flight.poseAtDistance(flight.length() * i / 256.0) * opticalInBody();
+    if (i % 4 == 0) loaded->poses.push_back(T_W_C);
+    renderer.render(T_W_C, &depth);
+    if (depth.validCount() >= 0.4 * depth.data.size()) loaded->dense_poses.push_back(T_W_C);
+  }
+  std::printf("scene %s: %zu triangles, %zu flight poses, %zu dense poses\n", name.c_str(), loaded->mesh.numTriangles(),
+              loaded->poses.size(), loaded->dense_poses.size());
   return (cache[name] = std::move(loaded)).get();
 }
 
-void BM_RenderDepth(benchmark::State& state, const std::string& name) {
+// Poses for a benchmark: range(1) == 1 selects the dense ones.
+const std::vector<Transform>* posesFor(benchmark::State& state, const std::string& name, const LoadedScene** out) {
   const LoadedScene* s = getScene(name);
+  *out = s;
   if (s == nullptr) {
     state.SkipWithError(("scene " + name + " not available").c_str());
-    return;
+    return nullptr;
   }
-  CameraConfig config;  // 640 x 480, 90 x 60 deg, [1.6, 8] m
-  const DepthCamera camera(config);
-  const DepthRenderer renderer(*s->scene, camera, static_cast<int>(state.range(0)));
-  DepthImage depth;
-  size_t i = 0, valid = 0;
-  for (auto _ : state) {
-    renderer.render(s->poses[i++ % s->poses.size()], &depth);
-    valid += depth.validCount();
-    benchmark::DoNotOptimize(depth.data.data());
+  const std::vector<Transform>* poses = state.range(1) == 1 ? &s->dense_poses : &s->poses;
+  if (poses->empty()) {
+    state.SkipWithError("no pose");
+    return nullptr;
   }
+  return poses;
+}
+
+void setCounters(benchmark::State& state, const LoadedScene* s, const CameraConfig& config, size_t valid) {
   const double rays = static_cast<double>(state.iterations()) * config.width * config.height;
   state.counters["rays_per_s"] = benchmark::Counter(rays, benchmark::Counter::kIsRate);
   state.counters["valid_px"] = static_cast<double>(valid) / state.iterations();
   state.counters["triangles"] = static_cast<double>(s->mesh.numTriangles());
 }
 
+// Args: {threads, dense}.
+void BM_RenderDepth(benchmark::State& state, const std::string& name) {
+  const LoadedScene* s = nullptr;
+  const std::vector<Transform>* poses = posesFor(state, name, &s);
+  if (poses == nullptr) return;
+  CameraConfig config;  // 640 x 480, 90 x 60 deg, [1.6, 8] m
+  const DepthCamera camera(config);
+  const DepthRenderer renderer(*s->scene, camera, static_cast<int>(state.range(0)));
+  DepthImage depth;
+  size_t i = 0, valid = 0;
+  for (auto _ : state) {
+    renderer.render((*poses)[i++ % poses->size()], &depth);
+    valid += depth.validCount();
+    benchmark::DoNotOptimize(depth.data.data());
+  }
+  setCounters(state, s, config, valid);
+}
+
+// The same frames cast one ray at a time (rtcIntersect1), one thread: the
+// baseline the packet renderer is measured against.
+void BM_RenderDepthSingleRays(benchmark::State& state, const std::string& name) {
+  const LoadedScene* s = nullptr;
+  const std::vector<Transform>* poses = posesFor(state, name, &s);
+  if (poses == nullptr) return;
+  CameraConfig config;
+  const DepthCamera camera(config);
+  std::vector<float> depth(static_cast<size_t>(config.width) * config.height);
+  size_t i = 0, valid = 0;
+  for (auto _ : state) {
+    const Transform& T_W_C = (*poses)[i++ % poses->size()];
+    for (int r = 0; r < config.height; ++r) {
+      for (int c = 0; c < config.width; ++c) {
+        double t;
+        const bool hit = s->scene->intersect(T_W_C.translation(), T_W_C.linear() * camera.pixelRay(c, r), 0.0,
+                                             config.max_range, &t);
+        const bool ok = hit && camera.depthInRange(t);
+        depth[static_cast<size_t>(r) * config.width + c] = ok ? static_cast<float>(t) : NAN;
+        valid += ok ? 1 : 0;
+      }
+    }
+    benchmark::DoNotOptimize(depth.data());
+  }
+  setCounters(state, s, config, valid);
+}
+
 }  // namespace
 
-BENCHMARK_CAPTURE(BM_RenderDepth, plant, std::string("plant"))->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RenderDepth, powerplant, std::string("powerplant"))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RenderDepth, statue, std::string("statue"))->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+#define NBV_RENDER_BENCH(scene)                                                                          \
+  BENCHMARK_CAPTURE(BM_RenderDepth, scene, std::string(#scene))                                          \
+      ->ArgNames({"threads", "dense"})                                                                   \
+      ->ArgsProduct({{1, 2}, {0, 1}})                                                                    \
+      ->Unit(benchmark::kMillisecond)                                                                    \
+      ->UseRealTime();                                                                                   \
+  BENCHMARK_CAPTURE(BM_RenderDepthSingleRays, scene, std::string(#scene))                                \
+      ->ArgNames({"threads", "dense"})                                                                   \
+      ->Args({1, 1})                                                                                     \
+      ->Unit(benchmark::kMillisecond)                                                                    \
+      ->UseRealTime()
+
+NBV_RENDER_BENCH(plant);
+NBV_RENDER_BENCH(powerplant);
+NBV_RENDER_BENCH(statue);
 
 BENCHMARK_MAIN();

@@ -10,7 +10,8 @@
 namespace surface_nbv {
 namespace {
 
-constexpr int kPacket = 8;
+constexpr int kTileW = 4;  // 4 x 4 pixel tiles in 16-wide packets
+constexpr int kTileH = 4;
 constexpr int kRowsPerTask = 4;
 
 uint64_t splitmix64(uint64_t x) {
@@ -66,16 +67,15 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(32) RTCRayHit8 packet;
-  alignas(32) int valid[kPacket];
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[kTileW * kTileH];
 
-  for (int row = row_begin; row < row_end; ++row) {
-    float* out = &image->at(row, 0);
-    for (int col0 = 0; col0 < width; col0 += kPacket) {
-      for (int k = 0; k < kPacket; ++k) {
-        const int col = col0 + k;
-        valid[k] = col < width ? -1 : 0;
-        const Eigen::Vector3d d = R * camera_.pixelRay(std::min(col, width - 1), row);
+  for (int row0 = row_begin; row0 < row_end; row0 += kTileH) {
+    for (int col0 = 0; col0 < width; col0 += kTileW) {
+      for (int k = 0; k < kTileW * kTileH; ++k) {
+        const int row = row0 + k / kTileW, col = col0 + k % kTileW;
+        valid[k] = row < row_end && col < width ? -1 : 0;
+        const Eigen::Vector3d d = R * camera_.pixelRay(std::min(col, width - 1), std::min(row, row_end - 1));
         packet.ray.org_x[k] = static_cast<float>(o.x());
         packet.ray.org_y[k] = static_cast<float>(o.y());
         packet.ray.org_z[k] = static_cast<float>(o.z());
@@ -90,18 +90,19 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
         packet.ray.flags[k] = 0;
         packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       }
-      rtcIntersect8(valid, scene_.handle(), &context, &packet);
-      const int count = std::min(kPacket, width - col0);
-      for (int k = 0; k < count; ++k) {
+      rtcIntersect16(valid, scene_.handle(), &context, &packet);
+      for (int k = 0; k < kTileW * kTileH; ++k) {
+        if (!valid[k]) continue;
+        const int row = row0 + k / kTileW, col = col0 + k % kTileW;
         float z = std::numeric_limits<float>::quiet_NaN();
         if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
           z = packet.ray.tfar[k];
           if (cfg.noise_k > 0.0) {
-            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index, static_cast<uint64_t>(row) * width + col0 + k);
+            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index, static_cast<uint64_t>(row) * width + col);
           }
           if (!(z >= min_z && z <= max_z)) z = std::numeric_limits<float>::quiet_NaN();
         }
-        out[col0 + k] = z;
+        image->at(row, col) = z;
       }
     }
   }
