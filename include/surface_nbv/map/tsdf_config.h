@@ -1,0 +1,36 @@
+// Parameters of the TSDF map (METHOD.md, "TSDF map"). Lengths in metres.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "surface_nbv/common.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+// What an invalid pixel (NaN, zero, outside the depth range) does.
+enum class InvalidPixelPolicy {
+  kIgnore,            // nothing: the ray carries no information
+  kClearToMaxRange,   // free space along the ray up to max range (no surface)
+};
+
+const char* toString(InvalidPixelPolicy policy);
+bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy);
+
+struct TsdfConfig {
+  double voxel_size = 0.3;        // rho_v
+  double truncation = 0.0;        // 0 selects 3 voxels
+  float w_th = 0.3f;              // W_th: known iff w >= w_th
+  float max_weight = 0.0f;        // cap on w; 0 = no cap
+  AlignedBox bounds{Eigen::Vector3d(-10, -10, -1), Eigen::Vector3d(10, 10, 9)};
+  size_t max_blocks = 1u << 20;   // allocation stops there (counted, never a crash)
+  InvalidPixelPolicy invalid_pixels = InvalidPixelPolicy::kIgnore;
+  int threads = 1;                // integration threads
+
+  double truncationDistance() const { return truncation > 0.0 ? truncation : 3.0 * voxel_size; }
+  // Names the first bad key, e.g. "voxel_size expected > 0".
+  Status validate() const;
+};
+
+}  // namespace surface_nbv

@@ -1,0 +1,50 @@
+// Fuses depth into a TsdfMap (METHOD.md, "TSDF map"). Depth images are
+// integrated projectively: every voxel of every block that can be in the
+// camera frustum (up to max range plus truncation, and not entirely behind
+// the measured surfaces) is projected into the image; with the measured depth
+// d at that pixel and the voxel's depth z, sdf = d - z, clamped to the
+// truncation distance t, and the voxel is updated when sdf >= -t:
+//   phi <- (w phi + w_new sdf) / (w + w_new),  w <- w + w_new,  w_new = 1 / z^2
+// (weights optionally capped). Free space in front of surfaces is carved this
+// way. Point clouds are integrated by casting each ray through the voxels
+// with the same update, distances measured along the ray.
+// Thread safety: one integration at a time per map; it uses config.threads.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "surface_nbv/common.h"
+#include "surface_nbv/map/tsdf_map.h"
+#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+struct IntegrationStats {
+  size_t blocks_considered = 0;  // in the frustum's bounding box
+  size_t blocks_updated = 0;
+  size_t voxels_updated = 0;
+  size_t blocks_refused = 0;     // allocation refused (cap or bounds)
+  size_t invalid_pixels = 0;
+};
+
+class TsdfIntegrator {
+ public:
+  explicit TsdfIntegrator(TsdfMap* map);
+
+  // T_W_C: optical frame in the world. The image must match the camera size.
+  Status integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C,
+                        IntegrationStats* stats = nullptr);
+
+  // points_S in the sensor frame (origin = sensor), sensor pose T_W_S.
+  // Points farther than max_range are treated as invalid pixels are.
+  Status integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S, double max_range,
+                         IntegrationStats* stats = nullptr);
+
+ private:
+  TsdfMap* map_;
+};
+
+}  // namespace surface_nbv

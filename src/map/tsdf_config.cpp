@@ -1,0 +1,39 @@
+#include "surface_nbv/map/tsdf_config.h"
+
+#include <cmath>
+
+namespace surface_nbv {
+
+const char* toString(InvalidPixelPolicy policy) {
+  return policy == InvalidPixelPolicy::kIgnore ? "ignore" : "clear";
+}
+
+bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy) {
+  if (text == "ignore") *policy = InvalidPixelPolicy::kIgnore;
+  else if (text == "clear") *policy = InvalidPixelPolicy::kClearToMaxRange;
+  else return false;
+  return true;
+}
+
+Status TsdfConfig::validate() const {
+  if (!std::isfinite(voxel_size) || voxel_size <= 0.0) return Status::Error("voxel_size expected > 0");
+  if (!std::isfinite(truncation) || truncation < 0.0) return Status::Error("truncation expected >= 0 (0 = 3 voxels)");
+  if (truncation > 0.0 && truncation < voxel_size) return Status::Error("truncation expected >= voxel_size");
+  if (!std::isfinite(w_th) || w_th <= 0.0f) return Status::Error("w_th expected > 0");
+  if (!std::isfinite(max_weight) || max_weight < 0.0f || (max_weight > 0.0f && max_weight < w_th)) {
+    return Status::Error("max_weight expected 0 (no cap) or >= w_th");
+  }
+  if (!bounds.min.allFinite() || !bounds.max.allFinite() || (bounds.max.array() <= bounds.min.array()).any()) {
+    return Status::Error("bounds expected finite with bounds_min < bounds_max on every axis");
+  }
+  const Eigen::Array3d blocks = (bounds.size() / (voxel_size * 8)).array().ceil();
+  if (blocks.prod() > 64e6) {
+    return Status::Error("bounds hold " + std::to_string(static_cast<long long>(blocks.prod())) +
+                         " block slots at this voxel_size (limit 64M): shrink the bounds or grow voxel_size");
+  }
+  if (max_blocks == 0) return Status::Error("max_blocks expected > 0");
+  if (threads < 1 || threads > 64) return Status::Error("threads expected in [1, 64]");
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv
