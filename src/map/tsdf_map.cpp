@@ -84,6 +84,16 @@ void TsdfMap::clear() {
   ++change_counter_;
 }
 
+bool TsdfMap::adoptBlocks(TsdfMap* other) {
+  if (other == this || other->grid_blocks_ != grid_blocks_) return false;
+  blocks_.swap(other->blocks_);
+  slots_.swap(other->slots_);
+  other->clear();
+  const uint64_t stamp = beginChange();
+  for (const auto& b : blocks_) b->change_stamp = stamp;
+  return true;
+}
+
 size_t TsdfMap::memoryBytes() const {
   return blocks_.size() * (sizeof(TsdfBlock) + sizeof(std::unique_ptr<TsdfBlock>)) + slots_.size() * sizeof(int32_t);
 }

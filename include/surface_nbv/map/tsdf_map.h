@@ -89,6 +89,10 @@ class TsdfMap {
 
   // Removes every block (the configuration stays).
   void clear();
+  // Replaces this map's blocks by all of `other`'s (same grid required, else
+  // false and nothing changes), leaving `other` empty. The adopted blocks get
+  // one fresh stamp above every earlier one; config and counter carry on.
+  bool adoptBlocks(TsdfMap* other);
   // Bytes held by blocks and the slot table.
   size_t memoryBytes() const;
 
