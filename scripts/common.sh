@@ -10,9 +10,10 @@ export PYTHON_EXECUTABLE=/usr/bin/python3
 
 nbv_log() { printf '[surface_nbv] %s\n' "$*" >&2; }
 
+# nbv_install_deps [LIST]: the packages of scripts/debian-packages.txt, or of LIST.
 nbv_install_deps() {
   local wanted missing=()
-  wanted=$(grep -vE '^\s*(#|$)' "$NBV_ROOT/scripts/debian-packages.txt")
+  wanted=$(grep -vE '^\s*(#|$)' "${1:-$NBV_ROOT/scripts/debian-packages.txt}")
   for pkg in $wanted; do
     dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q 'install ok installed' || missing+=("$pkg")
   done

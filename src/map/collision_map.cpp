@@ -141,14 +141,20 @@ double CollisionMap::distance(const Eigen::Vector3d& p_W) const {
     return 0.0;
   }
   const Eigen::Vector3d f = (p_W - origin_) / cell_size_;
-  const Eigen::Vector3i cell =
-      f.array().floor().cast<int>().max(0).min(grid_cells_.array() - 1).matrix();
   double d = config_.max_distance;
-  Eigen::Vector3i o;
-  if (edt_->nearest(cell, &o)) {
-    const Eigen::Vector3d lo = origin_ + o.cast<double>() * cell_size_;
-    const Eigen::Vector3d hi = lo + Eigen::Vector3d::Constant(cell_size_);
-    d = std::min(d, (lo - p_W).cwiseMax(p_W - hi).cwiseMax(0.0).norm());
+  const int mode = getenv("MODE") ? atoi(getenv("MODE")) : 0;
+  Eigen::Vector3i base, span;
+  if (mode == 0) { base = f.array().floor().cast<int>(); span.setConstant(1); }
+  else if (mode == 1) { base = (f.array() - 0.5).floor().cast<int>(); span.setConstant(2); }
+  else { base = (f.array() - 1.0).floor().cast<int>(); span.setConstant(3); }
+  for (int dz = 0; dz < span.z(); ++dz) for (int dy = 0; dy < span.y(); ++dy) for (int dx = 0; dx < span.x(); ++dx) {
+    const Eigen::Vector3i cell = (base + Eigen::Vector3i(dx, dy, dz)).array().max(0).min(grid_cells_.array() - 1).matrix();
+    Eigen::Vector3i o;
+    if (edt_->nearest(cell, &o)) {
+      const Eigen::Vector3d lo = origin_ + o.cast<double>() * cell_size_;
+      const Eigen::Vector3d hi = lo + Eigen::Vector3d::Constant(cell_size_);
+      d = std::min(d, (lo - p_W).cwiseMax(p_W - hi).cwiseMax(0.0).norm());
+    }
   }
   if (config_.bounds_are_obstacle) {
     d = std::min(d, std::min((p_W - origin_).minCoeff(), (bounds_max_ - p_W).minCoeff()));
