@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
 #include <dynamicEDT3D/dynamicEDT3D.h>
 
 namespace surface_nbv {
@@ -11,12 +12,12 @@ namespace surface_nbv {
 // library's out-of-line, bounds-checked accessors (the caller checks).
 class CollisionMap::Edt : public DynamicEDT3D {
  public:
-  explicit Edt(int max_sq_cells) : DynamicEDT3D(max_sq_cells) {}
+  explicit Edt(int cap_cells) : DynamicEDT3D(cap_cells * cap_cells) {}
 
   int sqCells(const Eigen::Vector3i& c) const { return data[c.x()][c.y()][c.z()].sqdist; }
   // The nearest obstacle cell, false when none is within the cap.
-  bool nearest(const Eigen::Vector3i& c, Eigen::Vector3i* obstacle) const {
-    const dataCell& d = data[c.x()][c.y()][c.z()];
+  bool nearest(int x, int y, int z, Eigen::Vector3i* obstacle) const {
+    const dataCell& d = data[x][y][z];
     if (d.sqdist >= maxDist_squared || d.obstX == invalidObstData) return false;
     *obstacle = Eigen::Vector3i(d.obstX, d.obstY, d.obstZ);
     return true;
@@ -33,8 +34,9 @@ Status CollisionConfig::validate() const {
 }
 
 int CollisionMap::voxelsPerCellFor(double voxel_size, const CollisionConfig& config) {
-  if (config.min_cell_size <= voxel_size) return 1;
-  return static_cast<int>(std::ceil(config.min_cell_size / voxel_size - 1e-9));
+  int factor = std::max(1, static_cast<int>(std::ceil(config.min_cell_size / voxel_size - 1e-9)));
+  while (std::ceil(config.max_distance / (factor * voxel_size)) + 2 > kMaxCapCells) ++factor;
+  return factor;
 }
 
 CollisionMap::CollisionMap(const TsdfMap& map, const CollisionConfig& config) : config_(config) { rebuild(map); }
@@ -48,8 +50,7 @@ void CollisionMap::rebuild(const TsdfMap& map) {
   factor_ = voxelsPerCellFor(map.voxelSize(), config_);
   cell_size_ = factor_ * map.voxelSize();
   grid_cells_ = (grid_voxels_.array() + factor_ - 1) / factor_;
-  const int cap_cells = static_cast<int>(std::ceil(config_.max_distance / cell_size_)) + 2;
-  max_sq_cells_ = cap_cells * cap_cells;
+  cap_cells_ = static_cast<int>(std::ceil(config_.max_distance / cell_size_)) + 2;
 
   last_stamp_ = map.changeCounter();
   seen_blocks_ = map.numBlocks();
@@ -70,9 +71,11 @@ void CollisionMap::rebuild(const TsdfMap& map) {
       for (int z = 0; z < sz; ++z) grid[x][y][z] = obstacle_[linear(Eigen::Vector3i(x, y, z))] != 0;
     }
   }
-  edt_ = std::make_unique<Edt>(max_sq_cells_);
+  edt_ = std::make_unique<Edt>(cap_cells_);
   edt_->initializeMap(sx, sy, sz, grid);
   edt_->update(true);
+  nearest_.assign(obstacle_.size(), Nearest());
+  syncNearest(Eigen::Vector3i::Zero(), grid_cells_ - Eigen::Vector3i::Ones());
 }
 
 void CollisionMap::update(const TsdfMap& map) {
@@ -87,7 +90,14 @@ void CollisionMap::update(const TsdfMap& map) {
   cells_evaluated_ = 0;
   blocks_visited_ = blocks.size();
   std::vector<Eigen::Vector3i> changed;
-  for (const Eigen::Vector3i& b : blocks) evaluateBlock(map, b, &changed);
+  std::vector<Eigen::AlignedBox3i> boxes;  // changed cells of each block
+  for (const Eigen::Vector3i& b : blocks) {
+    const size_t before = changed.size();
+    evaluateBlock(map, b, &changed);
+    if (changed.size() == before) continue;
+    boxes.emplace_back(changed[before]);
+    for (size_t i = before; i < changed.size(); ++i) boxes.back().extend(changed[i]);
+  }
   cells_changed_ = changed.size();
   if (changed.empty()) return;
   for (const Eigen::Vector3i& c : changed) {
@@ -98,6 +108,57 @@ void CollisionMap::update(const TsdfMap& map) {
     }
   }
   edt_->update(true);
+  // The transform changes only within its cap of a changed cell: copy the
+  // union of the dilated boxes, or each box when that is less work.
+  const Eigen::Vector3i pad = Eigen::Vector3i::Constant(cap_cells_);
+  const auto volume = [&pad](const Eigen::AlignedBox3i& b) {
+    return ((b.max() - b.min() + 2 * pad).cast<double>().array() + 1.0).prod();
+  };
+  Eigen::AlignedBox3i all;
+  double separate = 0.0;
+  for (const Eigen::AlignedBox3i& b : boxes) {
+    all.extend(b);
+    separate += volume(b);
+  }
+  if (volume(all) <= separate) {
+    syncNearest(all.min() - pad, all.max() + pad);
+  } else {
+    for (const Eigen::AlignedBox3i& b : boxes) syncNearest(b.min() - pad, b.max() + pad);
+  }
+}
+
+CollisionMap::Nearest CollisionMap::nearestFromTransform(const Eigen::Vector3i& cell) const {
+  Nearest n;
+  Eigen::Vector3i o;
+  if (edt_->nearest(cell.x(), cell.y(), cell.z(), &o)) {
+    const Eigen::Vector3i d = o - cell;
+    n = Nearest{static_cast<int8_t>(d.x()), static_cast<int8_t>(d.y()), static_cast<int8_t>(d.z()), 1};
+  }
+  return n;
+}
+
+void CollisionMap::syncNearest(const Eigen::Vector3i& lo_in, const Eigen::Vector3i& hi_in) {
+  const Eigen::Vector3i lo = lo_in.cwiseMax(0);
+  const Eigen::Vector3i hi = hi_in.cwiseMin(grid_cells_ - Eigen::Vector3i::Ones());
+  Eigen::Vector3i c;
+  for (c.x() = lo.x(); c.x() <= hi.x(); ++c.x()) {
+    for (c.y() = lo.y(); c.y() <= hi.y(); ++c.y()) {
+      for (c.z() = lo.z(); c.z() <= hi.z(); ++c.z()) nearest_[linear(c)] = nearestFromTransform(c);
+    }
+  }
+}
+
+bool CollisionMap::cacheMatchesTransform() const {
+  Eigen::Vector3i c;
+  for (c.x() = 0; c.x() < grid_cells_.x(); ++c.x()) {
+    for (c.y() = 0; c.y() < grid_cells_.y(); ++c.y()) {
+      for (c.z() = 0; c.z() < grid_cells_.z(); ++c.z()) {
+        const Nearest a = nearest_[linear(c)], b = nearestFromTransform(c);
+        if (a.valid != b.valid || (a.valid && (a.dx != b.dx || a.dy != b.dy || a.dz != b.dz))) return false;
+      }
+    }
+  }
+  return true;
 }
 
 bool CollisionMap::computeObstacle(const TsdfMap& map, const Eigen::Vector3i& cell) const {
@@ -140,22 +201,32 @@ double CollisionMap::distance(const Eigen::Vector3d& p_W) const {
   if (!p_W.allFinite() || (p_W.array() < origin_.array()).any() || (p_W.array() > bounds_max_.array()).any()) {
     return 0.0;
   }
-  const Eigen::Vector3d f = (p_W - origin_) / cell_size_;
-  double d = config_.max_distance;
-  const int mode = getenv("MODE") ? atoi(getenv("MODE")) : 0;
-  Eigen::Vector3i base, span;
-  if (mode == 0) { base = f.array().floor().cast<int>(); span.setConstant(1); }
-  else if (mode == 1) { base = (f.array() - 0.5).floor().cast<int>(); span.setConstant(2); }
-  else { base = (f.array() - 1.0).floor().cast<int>(); span.setConstant(3); }
-  for (int dz = 0; dz < span.z(); ++dz) for (int dy = 0; dy < span.y(); ++dy) for (int dx = 0; dx < span.x(); ++dx) {
-    const Eigen::Vector3i cell = (base + Eigen::Vector3i(dx, dy, dz)).array().max(0).min(grid_cells_.array() - 1).matrix();
-    Eigen::Vector3i o;
-    if (edt_->nearest(cell, &o)) {
-      const Eigen::Vector3d lo = origin_ + o.cast<double>() * cell_size_;
-      const Eigen::Vector3d hi = lo + Eigen::Vector3d::Constant(cell_size_);
-      d = std::min(d, (lo - p_W).cwiseMax(p_W - hi).cwiseMax(0.0).norm());
+  // In cell units: the nearest obstacles of the 8 cells whose centres
+  // surround p (clamped at the grid's faces), the nearest of their cubes.
+  const Eigen::Vector3d q = (p_W - origin_) / cell_size_;
+  int xs[2], ys[2], zs[2];
+  for (int axis = 0; axis < 3; ++axis) {
+    int* c = axis == 0 ? xs : (axis == 1 ? ys : zs);
+    const int b = static_cast<int>(q[axis] + 0.5) - 1;  // floor(q - 0.5), q >= 0 here
+    c[0] = std::clamp(b, 0, grid_cells_[axis] - 1);
+    c[1] = std::clamp(b + 1, 0, grid_cells_[axis] - 1);
+  }
+  const double cap = config_.max_distance / cell_size_;
+  double d_sq = cap * cap;
+  for (const int x : xs) {
+    for (const int y : ys) {
+      for (const int z : zs) {
+        const Nearest n = nearest_[linear(Eigen::Vector3i(x, y, z))];
+        if (!n.valid) continue;
+        const double ox = x + n.dx, oy = y + n.dy, oz = z + n.dz;
+        const double dx = std::max({ox - q.x(), q.x() - ox - 1.0, 0.0});
+        const double dy = std::max({oy - q.y(), q.y() - oy - 1.0, 0.0});
+        const double dz = std::max({oz - q.z(), q.z() - oz - 1.0, 0.0});
+        d_sq = std::min(d_sq, dx * dx + dy * dy + dz * dz);
+      }
     }
   }
+  double d = std::sqrt(d_sq) * cell_size_;
   if (config_.bounds_are_obstacle) {
     d = std::min(d, std::min((p_W - origin_).minCoeff(), (bounds_max_ - p_W).minCoeff()));
   }
@@ -179,7 +250,8 @@ double CollisionMap::cellCentreDistance(const Eigen::Vector3i& cell) const {
 size_t CollisionMap::memoryBytes() const {
   const size_t rows = static_cast<size_t>(grid_cells_.x()) * static_cast<size_t>(grid_cells_.y());
   constexpr size_t kAllocOverhead = 16;  // per new[] of a row, typical glibc
-  return obstacle_.size() * (Edt::kCellBytes + sizeof(uint8_t)) + 2 * rows * (sizeof(void*) + kAllocOverhead);
+  return obstacle_.size() * (Edt::kCellBytes + sizeof(uint8_t) + sizeof(Nearest)) +
+         2 * rows * (sizeof(void*) + kAllocOverhead);
 }
 
 }  // namespace surface_nbv

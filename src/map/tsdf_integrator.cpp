@@ -97,6 +97,23 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
     }
   }
 
+  // Silhouette pixels: next to a pixel with no usable depth or with a depth
+  // more than the truncation away. A voxel behind a silhouette cannot be told
+  // from one inside the object, so such pixels only carve free space.
+  std::vector<uint8_t> silhouette(usable.size(), 0);
+  auto jump = [&](size_t a, size_t b) {
+    const float da = usable[a], db = usable[b];
+    const bool va = std::isfinite(da), vb = std::isfinite(db);
+    if (va != vb || (va && std::abs(da - db) > trunc)) silhouette[a] = silhouette[b] = 1;
+  };
+  for (int v = 0; v < H; ++v) {
+    for (int u = 0; u < W; ++u) {
+      const size_t i = static_cast<size_t>(v) * W + u;
+      if (u + 1 < W) jump(i, i + 1);
+      if (v + 1 < H) jump(i, i + W);
+    }
+  }
+
   // Candidate blocks: the frustum's bounding box, culled block by block.
   const Transform T_C_W = T_W_C.inverse();
   const double far = max_range + trunc;
@@ -179,14 +196,15 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
           const float inv_z = 1.0f / z;
           const float uf = fx * p.x() * inv_z + cx, vf = fy * p.y() * inv_z + cy;
           if (!(uf >= 0.0f && uf < W && vf >= 0.0f && vf < H)) continue;
-          const float d = usable[static_cast<size_t>(vf) * W + static_cast<size_t>(uf)];
+          const size_t pixel = static_cast<size_t>(vf) * W + static_cast<size_t>(uf);
+          const float d = usable[pixel];
           float sdf;
           if (std::isinf(d)) {
             if (z > max_range) continue;
             sdf = trunc;
           } else {
             sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
-            if (!(sdf >= -trunc)) continue;
+            if (!(sdf >= -trunc) || (sdf < 0.0f && silhouette[pixel])) continue;
             sdf = std::min(sdf, trunc);
           }
           updateVoxel(&vox[i], sdf, inv_z * inv_z, max_weight);

@@ -91,6 +91,43 @@ void toPointCloud2Msg(const std::vector<Eigen::Vector3f>& points, const std_msgs
   for (size_t i = 0; i < points.size(); ++i) std::memcpy(msg->data.data() + 12 * i, points[i].data(), 12);
 }
 
+Status fromPointCloud2Msg(const sensor_msgs::PointCloud2& msg, std::vector<Eigen::Vector3f>* points) {
+  int offsets[3] = {-1, -1, -1};
+  const char* names[3] = {"x", "y", "z"};
+  for (const sensor_msgs::PointField& f : msg.fields) {
+    for (int i = 0; i < 3; ++i) {
+      if (f.name != names[i]) continue;
+      if (f.datatype != sensor_msgs::PointField::FLOAT32 || f.count != 1) {
+        return Status::Error(std::string("field ") + names[i] + " is not a single float32");
+      }
+      offsets[i] = static_cast<int>(f.offset);
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (offsets[i] < 0) return Status::Error(std::string("cloud has no field ") + names[i]);
+    if (static_cast<uint64_t>(offsets[i]) + 4 > msg.point_step) return Status::Error("field offset beyond point_step");
+  }
+  if (msg.is_bigendian) return Status::Error("big-endian clouds are not supported");
+  const uint64_t n = static_cast<uint64_t>(msg.width) * msg.height;
+  if (n > 50000000ull) return Status::Error("cloud of " + std::to_string(n) + " points is out of range");
+  if (static_cast<uint64_t>(msg.row_step) < static_cast<uint64_t>(msg.width) * msg.point_step ||
+      msg.data.size() < static_cast<uint64_t>(msg.row_step) * msg.height) {
+    return Status::Error("cloud data holds " + std::to_string(msg.data.size()) + " bytes, too few for " +
+                         std::to_string(n) + " points");
+  }
+  points->clear();
+  points->reserve(n);
+  for (uint32_t r = 0; r < msg.height; ++r) {
+    for (uint32_t c = 0; c < msg.width; ++c) {
+      const uint8_t* p = msg.data.data() + static_cast<size_t>(r) * msg.row_step + static_cast<size_t>(c) * msg.point_step;
+      Eigen::Vector3f q;
+      for (int i = 0; i < 3; ++i) std::memcpy(&q[i], p + offsets[i], 4);
+      points->push_back(q);
+    }
+  }
+  return Status::Ok();
+}
+
 void toMeshMarker(const TriangleMesh& mesh, const std_msgs::Header& header, const std::string& ns,
                   visualization_msgs::Marker* marker) {
   marker->header = header;

@@ -16,6 +16,11 @@ void StatsReporter::count(const std::string& name, uint64_t n) {
   counters_[name] += n;
 }
 
+void StatsReporter::set(const std::string& name, uint64_t value) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  counters_[name] = value;
+}
+
 void StatsReporter::recordMs(double ms) {
   std::lock_guard<std::mutex> lock(mutex_);
   times_ms_.push_back(ms);

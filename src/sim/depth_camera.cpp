@@ -40,6 +40,12 @@ DepthCamera::DepthCamera(const CameraConfig& config) : config_(config) {
   cy_ = 0.5 * (config.height - 1);
 }
 
+DepthCamera::DepthCamera(const CameraConfig& config, double fx, double fy, double cx, double cy)
+    : config_(config), fx_(fx), fy_(fy), cx_(cx), cy_(cy) {
+  config_.hfov_deg = 2.0 * std::atan(0.5 * config.width / fx) * 180.0 / M_PI;
+  config_.vfov_deg = 2.0 * std::atan(0.5 * config.height / fy) * 180.0 / M_PI;
+}
+
 bool DepthCamera::project(const Eigen::Vector3d& p_C, double* col, double* row) const {
   if (!(p_C.z() > 0.0)) return false;
   const double u = fx_ * p_C.x() / p_C.z() + cx_;

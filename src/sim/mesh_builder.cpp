@@ -254,7 +254,9 @@ void MeshBuilder::addSphere(const Eigen::Vector3d& center, double radius, int ri
   auto at = [&](int k, int i) { return first_ring + (k - 1) * n + i % n; };
   for (int i = 0; i < n; ++i) {
     addTriangle(north, at(1, i), at(1, i + 1));
-    for (int k = 1; k + 1 < nr; ++k) addQuad(at(k + 1, i), at(k + 1, i + 1), at(k, i + 1), at(k, i));
+    for (int k = 1; k + 1 < nr; ++k) {
+      addQuad(at(k + 1, i), at(k + 1, i + 1), at(k, i + 1), at(k, i));
+    }
     addTriangle(south, at(nr - 1, i + 1), at(nr - 1, i));
   }
 }

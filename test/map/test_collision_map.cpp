@@ -55,6 +55,7 @@ Eigen::Vector3d randomPoint(std::mt19937* rng, const AlignedBox& box) {
 
 // Every cell's transform value and distance at random points agree.
 void expectSameAsScratch(const CollisionMap& incremental, const TsdfMap& map, const CollisionConfig& config) {
+  EXPECT_TRUE(incremental.cacheMatchesTransform());
   const CollisionMap scratch(map, config);
   const Eigen::Vector3i& g = scratch.gridCells();
   int mismatches = 0;
@@ -97,6 +98,7 @@ TEST(CollisionMap, CellSizeIsAMultipleOfTheVoxel) {
   EXPECT_EQ(CollisionMap::voxelsPerCellFor(0.5, c), 1);
   c.min_cell_size = 0.0;
   EXPECT_EQ(CollisionMap::voxelsPerCellFor(0.15, c), 1);
+  EXPECT_EQ(CollisionMap::voxelsPerCellFor(0.01, c), 2);  // 2 m in at most kMaxCapCells cells
   const TsdfMap map(mapConfig(0.15));
   const CollisionMap coll(map, CollisionConfig());
   EXPECT_DOUBLE_EQ(coll.cellSize(), 0.3);
@@ -151,7 +153,7 @@ TEST(CollisionMap, RandomObstaclesNeverUnderestimateAndStayWithinACell) {
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> idx(0, 31);
   std::vector<Eigen::Vector3d> cubes;
-  for (int i = 0; i < 40; ++i) {
+  for (int i = 0; i < 300; ++i) {
     const Eigen::Vector3i v(idx(rng), idx(rng), idx(rng));
     setVoxel(&map, v, VoxelState::kOccupied);
     cubes.push_back(map.voxelCenter(v) - Eigen::Vector3d::Constant(0.125));

@@ -3,12 +3,12 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -51,7 +51,7 @@ void writeSdf(TsdfMap* map, const std::function<double(const Vector3d&)>& sdf, d
   }
 }
 
-void writeSphere(TsdfMap* map, double radius = 0.5) {
+void writeSphere(TsdfMap* map, double radius = 0.9) {
   writeSdf(map, [radius](const Vector3d& p) { return (p - Vector3d(0.6, 0.6, 1.6)).norm() - radius; }, 0.3);
 }
 
@@ -91,6 +91,11 @@ class MapIoTest : public ::testing::Test {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(size));
   }
+  static void patchByte(const std::string& path, size_t offset, uint8_t value) {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekp(static_cast<std::streamoff>(offset));
+    f.put(static_cast<char>(value));
+  }
   static void fixCrc(std::vector<uint8_t>* bytes) {
     const size_t n = bytes->size() - 4;
     const uint32_t crc = static_cast<uint32_t>(crc32(0, bytes->data(), static_cast<uInt>(n)));
@@ -102,19 +107,19 @@ class MapIoTest : public ::testing::Test {
     writeSdf(&map, [](const Vector3d& p) { return p.z() - 0.35; }, 0.05);
     return map;
   }
-  // Loads `path` into a fresh target map, expects refusal naming the file and
-  // `what`, and an untouched map.
+  // Loads `path` into target_, expects refusal naming the file and `what`,
+  // and target_ as it was built.
   void expectRefused(const std::string& path, const std::string& what) {
-    TsdfMap map = targetMap();
-    const Snapshot before(map);
-    const Status s = loadMap(path, &map);
+    const Status s = loadMap(path, &target_);
     ASSERT_FALSE(s.ok()) << path;
     EXPECT_NE(s.message().find(path), std::string::npos) << s.message();
     EXPECT_NE(s.message().find(what), std::string::npos) << s.message();
-    EXPECT_TRUE(Snapshot(map) == before) << s.message();
+    EXPECT_TRUE(Snapshot(target_) == target_before_) << s.message();
   }
 
   fs::path dir_;
+  TsdfMap target_ = targetMap();
+  const Snapshot target_before_{target_};
 };
 
 TEST_F(MapIoTest, RoundTripIsBitExactWithTheSameBlockSet) {
@@ -123,11 +128,10 @@ TEST_F(MapIoTest, RoundTripIsBitExactWithTheSameBlockSet) {
   TsdfVoxel* odd = map.allocateVoxel(Vector3i(0, 0, 0));
   odd->phi = -0.0f;
   odd->w = 1e-40f;  // denormal
-  for (const auto& b : map.blocks()) std::cerr << b->index.transpose() << "\n";
-  ASSERT_EQ(map.numBlocks(), 65u);
+  ASSERT_EQ(map.numBlocks(), 33u);  // a 32-block shell and block (0, 0, 0)
   const std::string path = file("sphere.tsdf");
   ASSERT_TRUE(saveMap(map, path).ok());
-  EXPECT_EQ(fs::file_size(path), kHeader + 65 * kBlock + 4);
+  EXPECT_EQ(fs::file_size(path), kHeader + 33 * kBlock + 4);
 
   TsdfMap loaded(testConfig());
   const Status s = loadMap(path, &loaded);
@@ -199,8 +203,9 @@ TEST_F(MapIoTest, TruncationAtEveryOffsetOfASmallMapIsRefused) {
   const std::vector<uint8_t> bytes = readBytes(path);
   ASSERT_EQ(bytes.size(), kHeader + 2 * kBlock + 4);
   const std::string cut = file("cut.tsdf");
-  for (size_t n = 0; n < bytes.size(); ++n) {
-    writeBytes(cut, bytes, n);
+  writeBytes(cut, bytes, bytes.size());
+  for (size_t n = bytes.size(); n-- > 0;) {
+    fs::resize_file(cut, n);
     expectRefused(cut, n < 8 ? "magic" : "truncated");
     if (HasFailure()) FAIL() << "at length " << n;
   }
@@ -213,14 +218,13 @@ TEST_F(MapIoTest, TruncationOfALargerMapAtAStrideIsRefused) {
   ASSERT_TRUE(saveMap(map, path).ok());
   const std::vector<uint8_t> bytes = readBytes(path);
   const std::string cut = file("cut.tsdf");
+  writeBytes(cut, bytes, bytes.size());
   int tried = 0;
-  for (size_t n = 8; n < bytes.size(); n += 997, ++tried) {
-    writeBytes(cut, bytes, n);
+  for (size_t n = bytes.size() - 1; n >= 8; n = n > 997 ? n - 997 : 0, ++tried) {
+    fs::resize_file(cut, n);
     expectRefused(cut, "truncated");
   }
-  writeBytes(cut, bytes, bytes.size() - 1);
-  expectRefused(cut, "truncated");
-  EXPECT_EQ(tried, 268);
+  EXPECT_EQ(tried, 132);
 }
 
 TEST_F(MapIoTest, EveryFlippedBitOfAOneBlockFileIsRefused) {
@@ -230,19 +234,16 @@ TEST_F(MapIoTest, EveryFlippedBitOfAOneBlockFileIsRefused) {
   ASSERT_TRUE(saveMap(map, path).ok());
   const std::vector<uint8_t> good = readBytes(path);
   ASSERT_EQ(good.size(), kHeader + kBlock + 4);
-  const std::string bad = file("bad.tsdf");
   int checksum_failures = 0;
   for (size_t i = 0; i < good.size(); ++i) {
-    std::vector<uint8_t> b = good;
-    b[i] ^= static_cast<uint8_t>(1u << (i % 8));
-    writeBytes(bad, b, b.size());
-    TsdfMap target = targetMap();
-    const Snapshot before(target);
-    const Status s = loadMap(bad, &target);
+    patchByte(path, i, static_cast<uint8_t>(good[i] ^ (1u << (i % 8))));
+    const Status s = loadMap(path, &target_);
+    patchByte(path, i, good[i]);
     ASSERT_FALSE(s.ok()) << "flipped byte " << i;
-    ASSERT_TRUE(Snapshot(target) == before) << "flipped byte " << i;
+    ASSERT_TRUE(Snapshot(target_) == target_before_) << "flipped byte " << i;
     checksum_failures += s.message().find("checksum") != std::string::npos;
   }
+  EXPECT_TRUE(loadMap(path, &target_).ok());
   // Magic (8), version (4) and the block count (8) fail earlier; everything else on the checksum.
   EXPECT_EQ(checksum_failures, static_cast<int>(good.size()) - 20);
 }
@@ -307,10 +308,10 @@ TEST_F(MapIoTest, IncompatibleConfigurationsAreRefused) {
   EXPECT_EQ(small_map.numBlocks(), 0u);
 
   TsdfConfig capped = testConfig();
-  capped.max_blocks = 64;
+  capped.max_blocks = 31;
   TsdfMap capped_map(capped);
   s = loadMap(path, &capped_map);
-  EXPECT_NE(s.message().find("65 blocks exceed the map's max_blocks 64"), std::string::npos) << s.message();
+  EXPECT_NE(s.message().find("32 blocks exceed the map's max_blocks 31"), std::string::npos) << s.message();
 
   TsdfConfig wider = testConfig();
   wider.bounds.max = Vector3d(5.0, 5.0, 5.0);
@@ -318,7 +319,7 @@ TEST_F(MapIoTest, IncompatibleConfigurationsAreRefused) {
   TsdfMap wider_map(wider);
   s = loadMap(path, &wider_map);
   EXPECT_TRUE(s.ok()) << s.message();
-  EXPECT_EQ(wider_map.numBlocks(), 65u);
+  EXPECT_EQ(wider_map.numBlocks(), 32u);
 }
 
 TEST_F(MapIoTest, DuplicateBlocksAndNonFiniteVoxelsAreRefused) {

@@ -169,6 +169,12 @@ TEST(MapMirror, LateJoinerWaitsForASnapshot) {
   ASSERT_EQ(mirror.apply(pub.next(true)), ApplyResult::kApplied);
   EXPECT_TRUE(mirror.synced());
   expectSameMap(pub.map, mirror.map());
+
+  // Even update 1 is refused without a snapshot: the mirror cannot know what came before.
+  MapMirror early(smallConfig());
+  MapUpdate first = update(pub.map, 0, 1, false);
+  EXPECT_EQ(early.apply(first), ApplyResult::kNeedSnapshot);
+  EXPECT_EQ(early.map().numBlocks(), 0u);
 }
 
 TEST(MapMirror, DuplicatesAreIgnoredAndARestartedCountAsksForASnapshot) {

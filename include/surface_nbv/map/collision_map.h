@@ -8,27 +8,35 @@
 //
 // Resolution: the transform runs on collision cells, each the smallest
 // integer multiple f of the TSDF voxel that is >= min_cell_size (default
-// 0.3 m); a cell is an obstacle if any of its f^3 voxels is. DynamicEDT3D
-// costs ~26 bytes per cell (a 24-byte dataCell, its bool grid and our state
-// byte), so 0.15 m voxels over the statue bounds (28 x 28 x 64 m = 187 x 187
-// x 427 = 14.9M cells) would need ~390 MB and about 1-2 s to build, against
-// 1.9M cells (~50 MB, 0.2 s) at 0.3 m; the power plant (72 x 50 x 17 m at
-// 0.3 m, f = 1) is 2.3M cells (~60 MB). A 0.3 m cell against a 1 m radius
-// keeps the passages the planner needs; figures from bench/bench_collision.
+// 0.3 m); a cell is an obstacle if any of its f^3 voxels is. A cell costs
+// 30 bytes (DynamicEDT3D's 24-byte cell and bool, our state byte and a
+// 4-byte query cache). Measured (bench_collision, 2 loaded cores): the power
+// plant (72 x 50 x 17 m, 0.3 m voxels, f = 1) is 2.3M cells, 70 MB, built in
+// 0.10 s all unknown and 0.16 s half known; the statue (28 x 28 x 64 m,
+// 0.15 m voxels) with f = 2 is 1.9M cells, 57 MB, 0.05-0.11 s, but at 0.15 m
+// it would be 14.9M cells, 450 MB, 0.6-0.8 s. Hence the 0.3 m default: a
+// 0.3 m cell inflates obstacles by at most one voxel, small against the
+// 1 m radius. An all-unknown map is cheap (obstacle cells whose neighbours
+// are all obstacles enter the transform already settled); the cost is in
+// clearing, paid incrementally as space is observed.
 //
-// Distance convention: the transform gives, for the cell c containing p, the
-// obstacle cell o whose centre is nearest to c's centre; distance(p) is the
-// Euclidean distance from p to the cube of o (0 inside an obstacle cell),
-// then the minimum with the distance to the bounds' faces, capped at
-// max_distance. It never under-estimates the distance from p to the union of
-// obstacle cubes (o is one of them), is exact when o is also the cube nearest
-// to p (always so for a single obstacle), and over-estimates by less than one
-// cell elsewhere (measured on random maps in test_collision_map; the proven
-// bound is 2.1 cells). With f > 1 obstacles are inflated to whole cells.
+// Distance convention: for p, take the 8 cells whose centres surround p; the
+// transform gives each the obstacle cell whose centre is nearest to its own
+// centre. distance(p) is the Euclidean distance from p to the nearest of
+// those obstacle cells taken as solid cubes (0 inside an obstacle cell), then
+// the minimum with the distance to the bounds' faces (bounds_are_obstacle),
+// capped at max_distance. It never under-estimates the distance from p to
+// the union of obstacle cubes (each candidate is one of them), is exact when
+// the nearest cube is among the candidates (always so for a single obstacle),
+// and over-estimates by at most 0.51 cell elsewhere (worst of 4M random
+// queries on random maps; test_collision_map asserts < 1 cell). With f > 1
+// the cubes are whole cells, so it under-estimates the distance to the
+// voxels by less than a cell.
 //
-// Thread safety: update()/rebuild() must not run concurrently with anything;
-// between updates distance() and isFree() are const and safe to call from
-// many threads. Units: metres, world frame (the TsdfMap's frame).
+// Thread safety: update() and rebuild() must not run concurrently with
+// anything; between updates distance() and isFree() are const, read only a
+// flat array and are safe to call from many threads. Units: metres, world
+// frame (the TsdfMap's frame).
 #pragma once
 
 #include <cstddef>
@@ -64,7 +72,9 @@ class CollisionMap {
   // Applies the blocks of `map` changed since the last update or rebuild:
   // recomputes only the cells those blocks cover, passes only the cells whose
   // state changed to the transform. `map` must be the map this was built
-  // from; after TsdfMap::clear() (noticed as fewer blocks) it rebuilds.
+  // from. Removed blocks are not reported by the map: call rebuild() after
+  // TsdfMap::clear() (update() notices it only while the map holds fewer
+  // blocks than at the last update).
   void update(const TsdfMap& map);
   // Recomputes every cell and the whole transform.
   void rebuild(const TsdfMap& map);
@@ -91,31 +101,46 @@ class CollisionMap {
   size_t lastBlocksVisited() const { return blocks_visited_; }
   size_t lastCellsEvaluated() const { return cells_evaluated_; }
   size_t lastCellsChanged() const { return cells_changed_; }
-  // Bytes held by the transform and the cell states.
+  // Bytes held by the transform, the cell states and the query cache.
   size_t memoryBytes() const;
 
-  // The collision cell size for a voxel size: the smallest multiple >= min_cell_size.
+  // Voxels per cell edge for a voxel size: the smallest multiple >= min_cell_size,
+  // grown if needed so that max_distance spans at most kMaxCapCells cells.
   static int voxelsPerCellFor(double voxel_size, const CollisionConfig& config);
+  static constexpr int kMaxCapCells = 127;
+
+  // For tests: the query cache agrees with the transform in every cell.
+  bool cacheMatchesTransform() const;
 
  private:
   class Edt;  // DynamicEDT3D with read access to its cells
+  // The transform's nearest obstacle of a cell, as an offset from the cell
+  // (|offset| < cap), so queries read 4 bytes from one flat array.
+  struct Nearest {
+    int8_t dx = 0, dy = 0, dz = 0;
+    uint8_t valid = 0;
+  };
 
-  size_t linear(const Eigen::Vector3i& c) const {
-    return static_cast<size_t>(c.x()) +
-           static_cast<size_t>(grid_cells_.x()) *
-               (static_cast<size_t>(c.y()) + static_cast<size_t>(grid_cells_.y()) * static_cast<size_t>(c.z()));
+  size_t linear(const Eigen::Vector3i& c) const {  // z fastest, as the transform stores it
+    return static_cast<size_t>(c.z()) +
+           static_cast<size_t>(grid_cells_.z()) *
+               (static_cast<size_t>(c.y()) + static_cast<size_t>(grid_cells_.y()) * static_cast<size_t>(c.x()));
   }
   bool computeObstacle(const TsdfMap& map, const Eigen::Vector3i& cell) const;
   // Re-evaluates the cells covering a block; appends those whose state changed.
   void evaluateBlock(const TsdfMap& map, const Eigen::Vector3i& block, std::vector<Eigen::Vector3i>* changed);
+  // Copies the transform into nearest_ over the cells lo..hi (inclusive, clamped).
+  void syncNearest(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi);
+  Nearest nearestFromTransform(const Eigen::Vector3i& cell) const;
 
   CollisionConfig config_;
   Eigen::Vector3d origin_, bounds_max_;
   Eigen::Vector3i grid_voxels_, grid_cells_;
   int factor_ = 1;
   double cell_size_ = 0.0;
-  int max_sq_cells_ = 0;             // the transform's cap, squared cells
+  int cap_cells_ = 0;                // the transform's cap in cells
   std::vector<uint8_t> obstacle_;    // per cell, what the transform holds
+  std::vector<Nearest> nearest_;     // per cell, the transform's answer for queries
   std::unique_ptr<Edt> edt_;
   uint64_t last_stamp_ = 0;
   size_t seen_blocks_ = 0;

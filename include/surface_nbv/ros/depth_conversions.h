@@ -32,6 +32,11 @@ void toCameraInfoMsg(const DepthCamera& camera, const std_msgs::Header& header, 
 void toPointCloud2Msg(const std::vector<Eigen::Vector3f>& points, const std_msgs::Header& header,
                       sensor_msgs::PointCloud2* msg);
 
+// Reads the float32 x, y, z fields of any PointCloud2 layout; checks field
+// types, point_step, row_step and the buffer length. Non-finite points are
+// kept (the integrator treats them as invalid pixels).
+Status fromPointCloud2Msg(const sensor_msgs::PointCloud2& msg, std::vector<Eigen::Vector3f>* points);
+
 // A TRIANGLE_LIST marker of `mesh` (grey, opaque).
 void toMeshMarker(const TriangleMesh& mesh, const std_msgs::Header& header, const std::string& ns,
                   visualization_msgs::Marker* marker);

@@ -18,6 +18,8 @@ class StatsReporter {
   StatsReporter(ros::NodeHandle& priv, const std::string& node_name, double period_s);
 
   void count(const std::string& name, uint64_t n = 1);
+  // Sets a gauge (a value that goes up and down, e.g. blocks in the map).
+  void set(const std::string& name, uint64_t value);
   void recordMs(double ms);
   uint64_t get(const std::string& name) const;
   void publishNow();

@@ -32,6 +32,9 @@ struct CameraConfig {
 class DepthCamera {
  public:
   explicit DepthCamera(const CameraConfig& config);
+  // Explicit intrinsics (e.g. from a CameraInfo): the size and depth range
+  // come from `config`, its FOV fields are recomputed from fx and fy.
+  DepthCamera(const CameraConfig& config, double fx, double fy, double cx, double cy);
 
   const CameraConfig& config() const { return config_; }
   int width() const { return config_.width; }

@@ -1,0 +1,33 @@
+// Parameters of tsdf_mapper. Shared keys (voxel_size, w_th, bounds_min,
+// bounds_max, camera/min_range, camera/max_range) come from the shared
+// namespace, so the mapper, extractor and planner cannot disagree; the rest
+// are the node's own (~).
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/ros/param_reader.h"
+#include "surface_nbv/sim/depth_camera.h"
+
+namespace surface_nbv {
+
+struct MapperConfig {
+  std::string shared_namespace = "/nbv";
+  TsdfConfig tsdf;
+  CameraConfig camera;            // only min_range / max_range are used (intrinsics come from CameraInfo)
+  std::string world_frame = "world";
+  std::string input = "image";    // "image" (depth/image + depth/camera_info) or "points" (depth/points)
+  double update_rate = 2.0;       // Hz of tsdf/update
+  double mesh_rate = 0.5;         // Hz of tsdf/mesh (0 = never)
+  double stats_period = 1.0;      // s
+  std::string map_directory = "/tmp/surface_nbv_maps";
+  int max_pending_frames = 10;    // frames waiting for their transform
+  double tf_wait = 0.5;           // s a frame may wait for its transform
+
+  Status validate() const;
+};
+
+Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* config);
+
+}  // namespace surface_nbv

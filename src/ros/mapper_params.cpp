@@ -1,0 +1,66 @@
+#include "surface_nbv/ros/mapper_params.h"
+
+#include <cmath>
+
+#include "surface_nbv/ros/sim_params.h"
+
+namespace surface_nbv {
+
+Status MapperConfig::validate() const {
+  if (Status s = tsdf.validate(); !s) return s;
+  if (world_frame.empty()) return Status::Error("world_frame expected a frame name");
+  if (input != "image" && input != "points") return Status::Error("input expected 'image' or 'points', got '" + input + "'");
+  if (!std::isfinite(update_rate) || update_rate <= 0.0 || update_rate > 100.0) {
+    return Status::Error("update_rate expected in (0, 100] Hz");
+  }
+  if (!std::isfinite(mesh_rate) || mesh_rate < 0.0 || mesh_rate > 100.0) return Status::Error("mesh_rate expected in [0, 100] Hz");
+  if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
+  if (map_directory.empty()) return Status::Error("map_directory expected a directory");
+  if (max_pending_frames < 1 || max_pending_frames > 1000) return Status::Error("max_pending_frames expected in [1, 1000]");
+  if (!std::isfinite(tf_wait) || tf_wait < 0.0 || tf_wait > 10.0) return Status::Error("tf_wait expected in [0, 10] s");
+  return Status::Ok();
+}
+
+Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
+  ParamReader reader(priv);
+  reader.get("shared_namespace", &c->shared_namespace);
+  reader.get("truncation", &c->tsdf.truncation);
+  double max_weight = c->tsdf.max_weight;
+  reader.get("max_weight", &max_weight);
+  c->tsdf.max_weight = static_cast<float>(max_weight);
+  int max_blocks = static_cast<int>(c->tsdf.max_blocks);
+  reader.get("max_blocks", &max_blocks);
+  c->tsdf.max_blocks = max_blocks > 0 ? static_cast<size_t>(max_blocks) : 0;
+  std::string policy = toString(c->tsdf.invalid_pixels);
+  reader.get("invalid_pixels", &policy);
+  reader.get("threads", &c->tsdf.threads);
+  reader.get("world_frame", &c->world_frame);
+  reader.get("input", &c->input);
+  reader.get("update_rate", &c->update_rate);
+  reader.get("mesh_rate", &c->mesh_rate);
+  reader.get("stats_period", &c->stats_period);
+  reader.get("map_directory", &c->map_directory);
+  reader.get("max_pending_frames", &c->max_pending_frames);
+  reader.get("tf_wait", &c->tf_wait);
+  reader.checkUnknown();
+  if (Status s = reader.status(); !s) return s;
+  if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {
+    return Status::Error(priv.resolveName("invalid_pixels") + " expected 'ignore' or 'clear', got '" + policy + "'");
+  }
+
+  ParamReader shared(ros::NodeHandle(c->shared_namespace));
+  shared.get("voxel_size", &c->tsdf.voxel_size);
+  double w_th = c->tsdf.w_th;
+  shared.get("w_th", &w_th);
+  c->tsdf.w_th = static_cast<float>(w_th);
+  shared.get("bounds_min", &c->tsdf.bounds.min);
+  shared.get("bounds_max", &c->tsdf.bounds.max);
+  readCameraConfig(&shared, &c->camera);
+  shared.checkUnknown("camera");
+  if (Status s = shared.status(); !s) return s;
+  if (Status s = c->camera.validate(); !s) return Status::Error(c->shared_namespace + "/" + s.message());
+  if (Status s = c->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv
