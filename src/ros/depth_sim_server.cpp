@@ -17,7 +17,7 @@ DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const C
       camera_(camera),
       config_(config),
       tf_listener_(tf_buffer_),
-      stats_(priv_, "depth_sim", config.stats_period) {
+      stats_(priv_, "stats", "depth_sim", config.stats_period) {
   status_ = loadScene(config_.scene, &mesh_);
   if (status_) status_ = RaycastScene::create(mesh_, &scene_);
   if (!status_) return;

@@ -6,9 +6,11 @@
 
 namespace surface_nbv {
 
-StatsReporter::StatsReporter(ros::NodeHandle& priv, const std::string& node_name, double period_s) : node_name_(node_name) {
-  pub_ = priv.advertise<surface_nbv::NodeStats>("stats", 1, true);
-  timer_ = priv.createWallTimer(ros::WallDuration(period_s), &StatsReporter::onTimer, this);
+StatsReporter::StatsReporter(ros::NodeHandle& nh, const std::string& topic, const std::string& node_name,
+                             double period_s)
+    : node_name_(node_name) {
+  pub_ = nh.advertise<surface_nbv::NodeStats>(topic, 1, true);
+  timer_ = nh.createWallTimer(ros::WallDuration(period_s), &StatsReporter::onTimer, this);
 }
 
 void StatsReporter::count(const std::string& name, uint64_t n) {

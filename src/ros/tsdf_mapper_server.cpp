@@ -27,7 +27,7 @@ TsdfMapperServer::TsdfMapperServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       integrator_(&map_),
       mesher_(std::make_unique<MeshExtractor>()),
       tf_listener_(tf_buffer_),
-      stats_(priv_, "tsdf_mapper", config.stats_period) {
+      stats_(nh_, "tsdf/stats", "tsdf_mapper", config.stats_period) {
   if (config_.input == "image") {
     info_sub_ = nh_.subscribe("depth/camera_info", 5, &TsdfMapperServer::onCameraInfo, this);
     image_sub_ = nh_.subscribe("depth/image", 5, &TsdfMapperServer::onImage, this);

@@ -153,3 +153,54 @@ TEST(DepthConversions, MeshMarkerHasThreePointsPerTriangle) {
   EXPECT_DOUBLE_EQ(m.points[5].z, 1.0);
   EXPECT_DOUBLE_EQ(m.pose.orientation.w, 1.0);
 }
+
+TEST(DepthConversions, PointCloudRoundTripAndPaddedLayouts) {
+  sensor_msgs::PointCloud2 cloud;
+  toPointCloud2Msg({Eigen::Vector3f(1, 2, 3), Eigen::Vector3f(NAN, 0, 5)}, std_msgs::Header(), &cloud);
+  std::vector<Eigen::Vector3f> back;
+  ASSERT_TRUE(fromPointCloud2Msg(cloud, &back).ok());
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0], Eigen::Vector3f(1, 2, 3));
+  EXPECT_TRUE(std::isnan(back[1].x()));  // kept: the integrator counts it as invalid
+  // A padded layout (x, y, z, intensity in 16 bytes) with fields out of order.
+  sensor_msgs::PointCloud2 padded = cloud;
+  padded.point_step = 16;
+  padded.row_step = 32;
+  padded.fields[0].offset = 8;  // x after y and z
+  padded.fields[1].offset = 0;
+  padded.fields[2].offset = 4;
+  padded.data.assign(32, 0);
+  const float v[3] = {7, 8, 9};  // y, z, x
+  std::memcpy(&padded.data[16], v, 12);
+  ASSERT_TRUE(fromPointCloud2Msg(padded, &back).ok());
+  EXPECT_EQ(back[1], Eigen::Vector3f(9, 7, 8));
+}
+
+TEST(DepthConversions, RejectsMalformedClouds) {
+  sensor_msgs::PointCloud2 cloud;
+  toPointCloud2Msg({Eigen::Vector3f(1, 2, 3)}, std_msgs::Header(), &cloud);
+  std::vector<Eigen::Vector3f> out;
+  auto refuse = [&](sensor_msgs::PointCloud2 bad, const std::string& what) {
+    const Status s = fromPointCloud2Msg(bad, &out);
+    EXPECT_FALSE(s.ok()) << what;
+    EXPECT_NE(s.message().find(what), std::string::npos) << s.message();
+  };
+  sensor_msgs::PointCloud2 bad = cloud;
+  bad.fields.pop_back();
+  refuse(bad, "no field z");
+  bad = cloud;
+  bad.fields[0].datatype = sensor_msgs::PointField::FLOAT64;
+  refuse(bad, "float32");
+  bad = cloud;
+  bad.data.resize(11);
+  refuse(bad, "bytes");
+  bad = cloud;
+  bad.width = 100000000;
+  refuse(bad, "out of range");
+  bad = cloud;
+  bad.fields[2].offset = 10;
+  refuse(bad, "point_step");
+  bad = cloud;
+  bad.is_bigendian = true;
+  refuse(bad, "big-endian");
+}

@@ -4,6 +4,7 @@
 
 #include <ros/ros.h>
 
+#include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/scripted_flight_server.h"
 #include "surface_nbv/ros/sim_params.h"
 
@@ -122,6 +123,55 @@ TEST(ParamLoader, ScriptedFlightParams) {
   ros::param::set("/flight_case2/target_min", lo);
   ScriptedFlightNodeConfig fresh;
   EXPECT_FALSE(loadScriptedFlightParams(ros::NodeHandle("/flight_case2"), &fresh).ok());
+}
+
+TEST(ParamLoader, MapperReadsSharedMapSettings) {
+  const std::string priv = "/mapper_case/tsdf_mapper", shared = "/mapper_case/nbv";
+  ros::param::set(priv + "/shared_namespace", shared);
+  ros::param::set(shared + "/voxel_size", 0.15);
+  ros::param::set(shared + "/w_th", 0.3);
+  std::vector<double> lo = {-14, -14, 0}, hi = {14, 14, 64};
+  ros::param::set(shared + "/bounds_min", lo);
+  ros::param::set(shared + "/bounds_max", hi);
+  ros::param::set(shared + "/camera/max_range", 5.0);
+  ros::param::set(shared + "/delta_pose", 3.6);  // another node's shared key: fine
+  ros::param::set(priv + "/invalid_pixels", std::string("clear"));
+  MapperConfig config;
+  const Status s = loadMapperParams(ros::NodeHandle(priv), &config);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(config.tsdf.voxel_size, 0.15);
+  EXPECT_DOUBLE_EQ(config.tsdf.bounds.max.z(), 64.0);
+  EXPECT_DOUBLE_EQ(config.camera.max_range, 5.0);
+  EXPECT_EQ(config.tsdf.invalid_pixels, InvalidPixelPolicy::kClearToMaxRange);
+}
+
+TEST(ParamLoader, MapperRefusesBadValues) {
+  struct Case {
+    std::string key;
+    XmlRpc::XmlRpcValue value;
+    std::string expect;
+  };
+  std::vector<Case> cases = {
+      {"priv:invalid_pixels", XmlRpc::XmlRpcValue(std::string("carve")), "invalid_pixels"},
+      {"priv:input", XmlRpc::XmlRpcValue(std::string("laser")), "input"},
+      {"priv:update_rate", XmlRpc::XmlRpcValue(0.0), "update_rate"},
+      {"priv:max_blocks", XmlRpc::XmlRpcValue(0), "max_blocks"},
+      {"priv:trunc", XmlRpc::XmlRpcValue(0.3), "trunc "},
+      {"shared:voxel_size", XmlRpc::XmlRpcValue(-0.3), "voxel_size"},
+      {"shared:bounds_min", XmlRpc::XmlRpcValue(3.0), "bounds_min"},
+  };
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string base = "/mapper_bad" + std::to_string(n++);
+    ros::param::set(base + "/tsdf_mapper/shared_namespace", base + "/nbv");
+    const bool shared = c.key.rfind("shared:", 0) == 0;
+    const std::string key = c.key.substr(c.key.find(':') + 1);
+    ros::param::set((shared ? base + "/nbv/" : base + "/tsdf_mapper/") + key, c.value);
+    MapperConfig config;
+    const Status s = loadMapperParams(ros::NodeHandle(base + "/tsdf_mapper"), &config);
+    EXPECT_FALSE(s.ok()) << c.key;
+    EXPECT_NE(s.message().find(c.expect), std::string::npos) << c.key << ": " << s.message();
+  }
 }
 
 int main(int argc, char** argv) {

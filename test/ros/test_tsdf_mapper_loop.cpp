@@ -7,6 +7,7 @@
 
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+#include <sensor_msgs/Image.h>
 #include <visualization_msgs/Marker.h>
 
 #include "surface_nbv/FilePath.h"
@@ -63,12 +64,27 @@ TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
         std::lock_guard<std::mutex> l(mutex);
         triangles = m->points.size() / 3;
       });
-  ros::Subscriber stats_sub = nh.subscribe<NodeStats>("tsdf_mapper/stats", 1, [&](const NodeStatsConstPtr& m) {
+  ros::Subscriber stats_sub = nh.subscribe<NodeStats>("tsdf/stats", 1, [&](const NodeStatsConstPtr& m) {
     std::lock_guard<std::mutex> l(mutex);
     stats = *m;
   });
+  ros::Publisher bad_pub = nh.advertise<sensor_msgs::Image>("depth/image", 5);
   ros::AsyncSpinner spinner(2);
   spinner.start();
+  // Wrong encodings and sizes among the simulator's frames are counted drops.
+  for (int i = 0; i < 50 && bad_pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.1).sleep();
+  sensor_msgs::Image bad;
+  bad.header.frame_id = "camera";
+  bad.header.stamp = ros::Time::now();
+  bad.encoding = "rgb8";
+  bad.width = 4;
+  bad.height = 4;
+  bad.step = 12;
+  bad.data.assign(48, 0);
+  bad_pub.publish(bad);
+  bad.encoding = "32FC1";
+  bad.step = 3;  // too small for 4 floats a row
+  bad_pub.publish(bad);
   // 25 s of wall time at 4x: about one loop around the box at two heights.
   ros::WallDuration(25.0).sleep();
 
@@ -79,7 +95,7 @@ TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
     EXPECT_GT(mirror.map().numBlocks(), 10u);
     EXPECT_GT(triangles, 500u) << "no mesh on tsdf/mesh";
     EXPECT_GT(counter(stats, "frames_integrated"), 300u);
-    EXPECT_EQ(counter(stats, "dropped_bad_image"), 0u);
+    EXPECT_EQ(counter(stats, "dropped_bad_image"), 2u);
     EXPECT_EQ(counter(stats, "dropped_integration"), 0u);
   }
 

@@ -1,5 +1,5 @@
-// Named event counters and processing times of a node, published on
-// `~stats` (surface_nbv/NodeStats) every period. Every dropped input is
+// Named event counters and processing times of a node, published as
+// surface_nbv/NodeStats on `topic` (relative to `nh`) every period. Every dropped input is
 // counted here under its reason, so drops are visible, never silent.
 // Thread safety: all methods may be called from any callback thread.
 #pragma once
@@ -15,7 +15,7 @@ namespace surface_nbv {
 
 class StatsReporter {
  public:
-  StatsReporter(ros::NodeHandle& priv, const std::string& node_name, double period_s);
+  StatsReporter(ros::NodeHandle& nh, const std::string& topic, const std::string& node_name, double period_s);
 
   void count(const std::string& name, uint64_t n = 1);
   // Sets a gauge (a value that goes up and down, e.g. blocks in the map).

@@ -5,7 +5,7 @@
 // when it does not come; stamps jumping backwards (a bag restarted) reset the
 // queue and the TF buffer. Publishes tsdf/update (changed blocks, or a
 // snapshot for late joiners and on request, with sequence numbers),
-// tsdf/mesh and ~stats; services ~save_map, ~load_map, ~export_mesh take a
+// tsdf/mesh and tsdf/stats; services ~save_map, ~load_map, ~export_mesh take a
 // file name inside map_directory, ~request_snapshot forces a snapshot.
 #pragma once
 
