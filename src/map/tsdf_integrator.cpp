@@ -1,32 +1,14 @@
 #include "surface_nbv/map/tsdf_integrator.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <unordered_map>
+
+#include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
 namespace {
-
-constexpr int kTile = 8;  // pixels per side of a depth tile
-
-// Per-tile maximum usable depth, for culling blocks hidden behind surfaces.
-// A tile with no usable pixel holds -inf (nothing can be updated through it).
-struct DepthTiles {
-  int tiles_x = 0, tiles_y = 0;
-  std::vector<float> max_depth;
-
-  float maxOver(int u0, int v0, int u1, int v1) const {
-    float m = -std::numeric_limits<float>::infinity();
-    for (int ty = v0 / kTile; ty <= v1 / kTile; ++ty) {
-      const float* row = &max_depth[static_cast<size_t>(ty) * tiles_x];
-      for (int tx = u0 / kTile; tx <= u1 / kTile; ++tx) m = std::max(m, row[tx]);
-    }
-    return m;
-  }
-};
 
 void updateVoxel(TsdfVoxel* v, float sdf, float weight, float max_weight) {
   const float w = v->w + weight;
@@ -34,25 +16,99 @@ void updateVoxel(TsdfVoxel* v, float sdf, float weight, float max_weight) {
   v->w = max_weight > 0.0f ? std::min(w, max_weight) : w;
 }
 
-template <typename Fn>
-void parallelFor(size_t n, int threads, Fn&& fn) {
-  if (threads <= 1 || n < 2) {
-    for (size_t i = 0; i < n; ++i) fn(i);
-    return;
-  }
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    for (size_t i = next.fetch_add(1); i < n; i = next.fetch_add(1)) fn(i);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-}
+// A side plane of the frustum through the camera centre: inside where
+// (n . p) >= 0, with n normalised.
+struct SidePlane {
+  Eigen::Vector3d n;
+  double distance(const Eigen::Vector3d& p_C) const { return n.dot(p_C); }
+};
 
 }  // namespace
 
 TsdfIntegrator::TsdfIntegrator(TsdfMap* map) : map_(map) {}
+
+std::vector<TsdfBlock*> TsdfIntegrator::candidateBlocks(const DepthCamera& camera, const Transform& T_W_C,
+                                                        IntegrationStats* stats) {
+  const TsdfConfig& cfg = map_->config();
+  const int W = camera.width(), H = camera.height();
+  const double trunc = cfg.truncationDistance();
+  const double far = camera.config().max_range + trunc;
+  const Transform T_C_W = T_W_C.inverse();
+  AlignedBox frustum;
+  frustum.extend(T_W_C.translation());
+  for (double c : {-0.5, W - 0.5}) {
+    for (double r : {-0.5, H - 0.5}) frustum.extend(T_W_C * (camera.pixelRay(c, r) * far));
+  }
+  const double block_len = cfg.voxel_size * kBlockSize;
+  const double radius = 0.5 * std::sqrt(3.0) * block_len;
+  const Eigen::Vector3i lo = ((frustum.min - cfg.bounds.min) / block_len).array().floor().cast<int>().max(0).matrix();
+  const Eigen::Vector3i hi = ((frustum.max - cfg.bounds.min) / block_len)
+                                 .array()
+                                 .floor()
+                                 .cast<int>()
+                                 .min(map_->gridBlocks().array() - 1)
+                                 .matrix();
+  const double left = (-0.5 - camera.cx()) / camera.fx(), right = (W - 0.5 - camera.cx()) / camera.fx();
+  const double top = (-0.5 - camera.cy()) / camera.fy(), bottom = (H - 0.5 - camera.cy()) / camera.fy();
+  const SidePlane planes[4] = {{Eigen::Vector3d(1, 0, -left).normalized()},
+                               {Eigen::Vector3d(-1, 0, right).normalized()},
+                               {Eigen::Vector3d(0, 1, -top).normalized()},
+                               {Eigen::Vector3d(0, -1, bottom).normalized()}};
+  const float t = static_cast<float>(trunc);
+
+  // Cull in parallel by z slices of the block grid, allocate serially.
+  const int slices = std::max(0, hi.z() - lo.z() + 1);
+  std::vector<std::vector<Eigen::Vector3i>> kept(static_cast<size_t>(slices));
+  std::vector<size_t> considered(static_cast<size_t>(slices), 0);
+  parallelFor(static_cast<size_t>(slices), cfg.threads, [&](size_t slice) {
+    const int z = lo.z() + static_cast<int>(slice);
+    for (int y = lo.y(); y <= hi.y(); ++y) {
+      for (int x = lo.x(); x <= hi.x(); ++x) {
+        ++considered[slice];
+        const Eigen::Vector3d origin = cfg.bounds.min + Eigen::Vector3d(x, y, z) * block_len;
+        const Eigen::Vector3d centre_C = T_C_W * (origin + Eigen::Vector3d::Constant(0.5 * block_len));
+        if (centre_C.z() < -radius || centre_C.z() > far + radius) continue;
+        bool outside = false;
+        for (const SidePlane& p : planes) outside = outside || p.distance(centre_C) < -radius;
+        if (outside) continue;
+        double zmin = std::numeric_limits<double>::infinity();
+        double umin = zmin, umax = -zmin, vmin = zmin, vmax = -zmin;
+        bool behind = false;
+        for (int c = 0; c < 8; ++c) {
+          const Eigen::Vector3d p = T_C_W * (origin + block_len * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1));
+          zmin = std::min(zmin, p.z());
+          if (p.z() <= 1e-6) {
+            behind = true;
+            continue;
+          }
+          const double u = camera.fx() * p.x() / p.z() + camera.cx(), v = camera.fy() * p.y() / p.z() + camera.cy();
+          umin = std::min(umin, u), umax = std::max(umax, u), vmin = std::min(vmin, v), vmax = std::max(vmax, v);
+        }
+        if (behind) umin = vmin = -0.5, umax = W - 0.5, vmax = H - 0.5;  // straddles the image plane
+        if (umax < -0.5 || umin > W - 0.5 || vmax < -0.5 || vmin > H - 0.5) continue;
+        const int u0 = std::max(0, static_cast<int>(std::floor(umin + 0.5)));
+        const int u1 = std::min(W - 1, static_cast<int>(std::floor(umax + 0.5)));
+        const int v0 = std::max(0, static_cast<int>(std::floor(vmin + 0.5)));
+        const int v1 = std::min(H - 1, static_cast<int>(std::floor(vmax + 0.5)));
+        if (zmin > index_.maxDepthOver(u0, v0, u1, v1) + t) continue;  // hidden behind every surface
+        kept[slice].emplace_back(x, y, z);
+      }
+    }
+  });
+  std::vector<TsdfBlock*> work;
+  for (size_t slice = 0; slice < kept.size(); ++slice) {
+    stats->blocks_considered += considered[slice];
+    for (const Eigen::Vector3i& index : kept[slice]) {
+      TsdfBlock* b = map_->allocateBlock(index);
+      if (b == nullptr) {
+        ++stats->blocks_refused;
+        continue;
+      }
+      work.push_back(b);
+    }
+  }
+  return work;
+}
 
 Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C,
                                       IntegrationStats* stats_out) {
@@ -67,121 +123,27 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   if (!cfg.bounds.contains(T_W_C.translation())) return Status::Error("camera pose is outside the map bounds");
 
   const float trunc = static_cast<float>(cfg.truncationDistance());
-  const float min_range = static_cast<float>(camera.config().min_range);
   const float max_range = static_cast<float>(camera.config().max_range);
-  const bool clear = cfg.invalid_pixels == InvalidPixelPolicy::kClearToMaxRange;
-
-  // Usable depth per pixel: a measurement, +inf for "free up to max range", NaN for nothing.
-  std::vector<float> usable(depth.data.size());
-  DepthTiles tiles;
-  tiles.tiles_x = (W + kTile - 1) / kTile;
-  tiles.tiles_y = (H + kTile - 1) / kTile;
-  tiles.max_depth.assign(static_cast<size_t>(tiles.tiles_x) * tiles.tiles_y, -std::numeric_limits<float>::infinity());
-  for (int v = 0; v < H; ++v) {
-    for (int u = 0; u < W; ++u) {
-      const size_t i = static_cast<size_t>(v) * W + u;
-      const float d = depth.data[i];
-      float use;
-      float reach;
-      if (std::isfinite(d) && d >= min_range && d <= max_range) {
-        use = d;
-        reach = d;
-      } else {
-        ++stats.invalid_pixels;
-        use = clear ? std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
-        reach = clear ? max_range : -std::numeric_limits<float>::infinity();
-      }
-      usable[i] = use;
-      float& m = tiles.max_depth[static_cast<size_t>(v / kTile) * tiles.tiles_x + u / kTile];
-      m = std::max(m, reach);
-    }
-  }
-
-  // Silhouette pixels: next to a pixel with no usable depth or with a depth
-  // more than the truncation away. A voxel behind a silhouette cannot be told
-  // from one inside the object, so such pixels only carve free space.
-  std::vector<uint8_t> silhouette(usable.size(), 0);
-  auto jump = [&](size_t a, size_t b) {
-    const float da = usable[a], db = usable[b];
-    const bool va = std::isfinite(da), vb = std::isfinite(db);
-    if (va != vb || (va && std::abs(da - db) > trunc)) silhouette[a] = silhouette[b] = 1;
-  };
-  for (int v = 0; v < H; ++v) {
-    for (int u = 0; u < W; ++u) {
-      const size_t i = static_cast<size_t>(v) * W + u;
-      if (u + 1 < W) jump(i, i + 1);
-      if (v + 1 < H) jump(i, i + W);
-    }
-  }
-
-  // Candidate blocks: the frustum's bounding box, culled block by block.
-  const Transform T_C_W = T_W_C.inverse();
-  const double far = max_range + trunc;
-  AlignedBox frustum;
-  frustum.extend(T_W_C.translation());
-  for (double c : {-0.5, W - 0.5}) {
-    for (double r : {-0.5, H - 0.5}) frustum.extend(T_W_C * (camera.pixelRay(c, r) * far));
-  }
-  const double block_len = cfg.voxel_size * kBlockSize;
-  const Eigen::Vector3i lo =
-      ((frustum.min - cfg.bounds.min) / block_len).array().floor().cast<int>().max(0).matrix();
-  const Eigen::Vector3i hi = ((frustum.max - cfg.bounds.min) / block_len)
-                                 .array()
-                                 .floor()
-                                 .cast<int>()
-                                 .min(map_->gridBlocks().array() - 1)
-                                 .matrix();
-  std::vector<TsdfBlock*> work;
-  for (int z = lo.z(); z <= hi.z(); ++z) {
-    for (int y = lo.y(); y <= hi.y(); ++y) {
-      for (int x = lo.x(); x <= hi.x(); ++x) {
-        ++stats.blocks_considered;
-        const Eigen::Vector3d origin = cfg.bounds.min + Eigen::Vector3d(x, y, z) * block_len;
-        double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
-        double umin = zmin, umax = -zmin, vmin = zmin, vmax = -zmin;
-        bool behind = false;
-        for (int c = 0; c < 8; ++c) {
-          const Eigen::Vector3d corner = origin + block_len * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-          const Eigen::Vector3d p = T_C_W * corner;
-          zmin = std::min(zmin, p.z());
-          zmax = std::max(zmax, p.z());
-          if (p.z() <= 1e-6) {
-            behind = true;
-            continue;
-          }
-          const double u = camera.fx() * p.x() / p.z() + camera.cx(), v = camera.fy() * p.y() / p.z() + camera.cy();
-          umin = std::min(umin, u), umax = std::max(umax, u), vmin = std::min(vmin, v), vmax = std::max(vmax, v);
-        }
-        if (zmax <= 0.0 || zmin > far) continue;
-        if (behind) umin = vmin = -0.5, umax = W - 0.5, vmax = H - 0.5;  // straddles the image plane
-        if (umax < -0.5 || umin > W - 0.5 || vmax < -0.5 || vmin > H - 0.5) continue;
-        const int u0 = std::max(0, static_cast<int>(std::floor(umin + 0.5)));
-        const int u1 = std::min(W - 1, static_cast<int>(std::floor(umax + 0.5)));
-        const int v0 = std::max(0, static_cast<int>(std::floor(vmin + 0.5)));
-        const int v1 = std::min(H - 1, static_cast<int>(std::floor(vmax + 0.5)));
-        if (zmin > tiles.maxOver(u0, v0, u1, v1) + trunc) continue;  // hidden behind every surface
-        TsdfBlock* b = map_->allocateBlock(Eigen::Vector3i(x, y, z));
-        if (b == nullptr) {
-          ++stats.blocks_refused;
-          continue;
-        }
-        work.push_back(b);
-      }
-    }
-  }
+  const float far = max_range + trunc;
+  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels == InvalidPixelPolicy::kClearToMaxRange,
+                                      cfg.threads);
+  const std::vector<TsdfBlock*> work = candidateBlocks(camera, T_W_C, &stats);
 
   // Projective update of every voxel of the candidate blocks.
   const uint64_t stamp = map_->beginChange();
+  const Transform T_C_W = T_W_C.inverse();
   const Eigen::Matrix3f R = T_C_W.linear().cast<float>();
   const float vs = static_cast<float>(cfg.voxel_size);
   const Eigen::Vector3f ax = R.col(0) * vs, ay = R.col(1) * vs, az = R.col(2) * vs;
   const float fx = static_cast<float>(camera.fx()), fy = static_cast<float>(camera.fy());
   const float cx = static_cast<float>(camera.cx()) + 0.5f, cy = static_cast<float>(camera.cy()) + 0.5f;
   const float max_weight = cfg.max_weight;
+  const float* usable = index_.usableData();
+  const uint8_t* silhouette = index_.silhouetteData();
   std::vector<size_t> updated(work.size(), 0);
   parallelFor(work.size(), cfg.threads, [&](size_t bi) {
     TsdfBlock* b = work[bi];
-    const Eigen::Vector3d c0 = cfg.bounds.min + (b->index.cast<double>() * kBlockSize).cast<double>() * cfg.voxel_size +
+    const Eigen::Vector3d c0 = cfg.bounds.min + (b->index.cast<double>() * kBlockSize) * cfg.voxel_size +
                                Eigen::Vector3d::Constant(0.5 * cfg.voxel_size);
     const Eigen::Vector3f p0 = (T_C_W * c0).cast<float>();
     size_t n = 0;

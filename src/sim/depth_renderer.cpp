@@ -1,11 +1,11 @@
 #include "surface_nbv/sim/depth_renderer.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <vector>
+
+#include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
 namespace {
@@ -43,17 +43,11 @@ void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t f
     renderRows(T_W_C, 0, height, frame_index, image);
     return;
   }
-  std::atomic<int> next_row{0};
-  auto worker = [&]() {
-    for (int row = next_row.fetch_add(kRowsPerTask); row < height; row = next_row.fetch_add(kRowsPerTask)) {
-      renderRows(T_W_C, row, std::min(height, row + kRowsPerTask), frame_index, image);
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(threads_ - 1);
-  for (int t = 1; t < threads_; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  const size_t bands = static_cast<size_t>((height + kRowsPerTask - 1) / kRowsPerTask);
+  parallelFor(bands, threads_, [&](size_t band) {
+    const int row = static_cast<int>(band) * kRowsPerTask;
+    renderRows(T_W_C, row, std::min(height, row + kRowsPerTask), frame_index, image);
+  });
 }
 
 void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
+#include "surface_nbv/map/depth_index.h"
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/depth_image.h"
@@ -47,7 +48,11 @@ class TsdfIntegrator {
                          IntegrationStats* stats = nullptr);
 
  private:
+  // Blocks that can be in view and not hidden behind surfaces, allocated.
+  std::vector<TsdfBlock*> candidateBlocks(const DepthCamera& camera, const Transform& T_W_C, IntegrationStats* stats);
+
   TsdfMap* map_;
+  DepthIndex index_;
 };
 
 }  // namespace surface_nbv
