@@ -118,7 +118,7 @@ CollisionConfig collisionConfig(double min_cell_size) {
   return c;
 }
 
-// range(0): 0 power plant, 1 statue; range(1): 1 half known, 0 all unknown;
+// range(0): 0 power plant, 1 statue. range(1): 1 half known, 0 all unknown.
 // range(2): min_cell_size in cm.
 void BM_Build(benchmark::State& state) {
   const Scenario s = state.range(0) == 0 ? powerplant() : statue();

@@ -64,14 +64,14 @@ struct MirrorCounters {
 // MapUpdates in sequence. Every update is validated completely before any of
 // it is applied, so a refused update leaves the mirror exactly as it was.
 // Sequence rules:
-//  - a snapshot always applies (it heals any gap and a restarted publisher);
-//    the next incremental update expected is snapshot.sequence + 1;
-//  - an incremental update applies iff its sequence is the last one + 1;
+//  - a snapshot always applies (it heals any gap and a restarted publisher),
+//    and the next incremental update expected is snapshot.sequence + 1
+//  - an incremental update applies iff its sequence is the last one + 1
 //  - a later sequence, or any incremental update before the first snapshot
-//    (a late joiner), answers kNeedSnapshot;
+//    (a late joiner), answers kNeedSnapshot
 //  - a duplicate or older sequence answers kIgnored, except that more than
 //    kStaleRunLimit of them in a row (the publisher restarted its count)
-//    answer kNeedSnapshot.
+//    answer kNeedSnapshot
 // Applied blocks whose voxels differ from the mirror's (or that are new) get a
 // fresh change stamp of the mirror's map, so its consumers poll
 // map().blocksChangedSince() as they would on the mapper's map. A snapshot
@@ -82,7 +82,7 @@ class MapMirror {
  public:
   static constexpr int kStaleRunLimit = 3;
 
-  // `config` is the map configuration shared by all nodes and must validate();
+  // `config` is the map configuration shared by all nodes and must validate():
   // updates must match its voxel_size, bounds and w_th bit for bit.
   explicit MapMirror(const TsdfConfig& config);
 

@@ -5,7 +5,7 @@
 // into a giant index. Voxel (i, j, k) covers bounds.min + voxel_size * [i, i+1)
 // (and so on), its centre at + 0.5 voxel. Every change stamps its block with a
 // counter so several consumers (mesh, updates, collision map) each poll what
-// changed since they last looked. Thread safety: concurrent reads are safe;
+// changed since they last looked. Thread safety: concurrent reads are safe,
 // writers must own disjoint blocks, and allocation is single-threaded.
 #pragma once
 

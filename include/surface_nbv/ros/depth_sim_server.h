@@ -2,7 +2,7 @@
 // frame time (sim time under use_sim_time), renders the scene with Embree and
 // publishes depth/image (32FC1), depth/camera_info, optionally depth/points,
 // plus a latched ground-truth mesh marker (~ground_truth) and ~stats.
-// A missing or invalid transform drops the frame (counted, throttled warning);
+// A missing or invalid transform drops the frame (counted, throttled warning):
 // nothing is ever rendered from a stale pose.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Appends closed primitives to a TriangleMesh. Units are metres and radians;
+// Appends closed primitives to a TriangleMesh. Units are metres and radians,
 // every argument is in the mesh's own frame (the world frame for scenes, Z up).
 // Triangles are wound counter-clockwise seen from outside (normals outward),
 // or seen from inside while setInward(true) is in effect (e.g. a room).
@@ -60,7 +60,7 @@ class MeshBuilder {
   int addVertex(const Eigen::Vector3d& p);
   void addTriangle(int a, int b, int c);
   void addQuad(int a, int b, int c, int d);
-  // Corner i is on the +x side when bit 0 is set, +y for bit 1, +z for bit 2;
+  // Corner i is on the +x side when bit 0 is set, +y for bit 1, +z for bit 2,
   // `reflect` reverses the winding (for a left-handed corner frame).
   void addBoxCorners(const std::array<Eigen::Vector3d, 8>& corners, bool reflect);
 

@@ -22,7 +22,7 @@ class RaycastScene {
   RaycastScene(const RaycastScene&) = delete;
   RaycastScene& operator=(const RaycastScene&) = delete;
 
-  // Nearest hit along origin + t * direction with t in [t_near, t_far];
+  // Nearest hit along origin + t * direction with t in [t_near, t_far],
   // returns false on a miss. `direction` need not be unit length: t is in its units.
   bool intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_near, double t_far,
                  double* t_hit, int* triangle = nullptr) const;
