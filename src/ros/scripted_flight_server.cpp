@@ -13,6 +13,7 @@ Status ScriptedFlightNodeConfig::validate() const {
     return Status::Error("world_frame and body_frame expected two different frame names");
   }
   if (!std::isfinite(tf_rate) || tf_rate <= 0.0 || tf_rate > 1000.0) return Status::Error("tf_rate expected in (0, 1000]");
+  if (!std::isfinite(stop_after) || stop_after < 0.0) return Status::Error("stop_after expected >= 0 s");
   if (!std::isfinite(time_scale) || time_scale <= 0.0 || time_scale > 100.0) {
     return Status::Error("time_scale expected in (0, 100]");
   }
@@ -32,6 +33,7 @@ Status loadScriptedFlightParams(const ros::NodeHandle& priv, ScriptedFlightNodeC
   reader.get("publish_clock", &c->publish_clock);
   reader.get("time_scale", &c->time_scale);
   reader.get("loop", &c->loop);
+  reader.get("stop_after", &c->stop_after);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (Status s = c->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());
@@ -63,9 +65,11 @@ void ScriptedFlightServer::onTimer(const ros::WallTimerEvent&) {
   }
   double t = (now - start_).toSec();
   if (config_.loop) t = std::fmod(t, flight_.duration());
-  if (t >= flight_.duration() && !finished_logged_) {
+  const double end = config_.stop_after > 0.0 ? std::min(config_.stop_after, flight_.duration()) : flight_.duration();
+  t = std::min(t, end);
+  if (t >= end && !finished_logged_) {
     finished_logged_ = true;
-    ROS_INFO("scripted_flight: flight finished after %.1f s, hovering at the end", flight_.duration());
+    ROS_INFO("scripted_flight: flight finished after %.1f s, hovering at the end", end);
   }
   geometry_msgs::TransformStamped tf = tf2::eigenToTransform(flight_.poseAt(t));
   tf.header.stamp = now;

@@ -24,6 +24,7 @@ struct ScriptedFlightNodeConfig {
   bool publish_clock = false;
   double time_scale = 1.0;    // simulated seconds per wall second
   bool loop = false;          // start over at the end instead of hovering
+  double stop_after = 0.0;    // s of flight, then hover; 0 flies the whole path
 
   Status validate() const;
 };

@@ -1,0 +1,30 @@
+// Parameters of ise_extractor. From the shared namespace: voxel_size, w_th,
+// bounds_min, bounds_max, camera/*, delta_pose, d_nu, d_nu_max (Table 1 of the
+// paper, one copy for every node); the rest are the node's own (~).
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/ros/param_reader.h"
+#include "surface_nbv/surface/surface_config.h"
+
+namespace surface_nbv {
+
+struct ExtractorConfig {
+  std::string shared_namespace = "/nbv";
+  TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
+  SurfaceConfig surface;
+  CollisionConfig collision;
+  std::string world_frame = "world";
+  double rate = 1.0;              // Hz: frontier updates while the map changes
+  std::string snapshot_service = "tsdf_mapper/request_snapshot";
+  double stats_period = 1.0;
+
+  Status validate() const;
+};
+
+Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* config);
+
+}  // namespace surface_nbv

@@ -1,0 +1,103 @@
+#include "surface_nbv/ros/frontier_conversions.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace surface_nbv {
+namespace {
+
+geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
+  geometry_msgs::Point q;
+  q.x = p.x();
+  q.y = p.y();
+  q.z = p.z();
+  return q;
+}
+
+visualization_msgs::Marker layer(const std_msgs::Header& header, const std::string& ns, int type, double scale) {
+  visualization_msgs::Marker m;
+  m.header = header;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = scale;
+  m.color.a = 1.0f;
+  return m;
+}
+
+std_msgs::ColorRGBA gainColour(double t) {
+  std_msgs::ColorRGBA c;
+  t = std::clamp(t, 0.0, 1.0);
+  c.r = static_cast<float>(t);
+  c.g = static_cast<float>(0.2 + 0.6 * (1.0 - std::abs(2.0 * t - 1.0)));
+  c.b = static_cast<float>(1.0 - t);
+  c.a = 1.0f;
+  return c;
+}
+
+}  // namespace
+
+void toFrontierMsg(const Frontier& frontier, const std_msgs::Header& header, surface_nbv::SurfaceFrontier* msg) {
+  msg->header = header;
+  msg->ises.clear();
+  msg->remaining.clear();
+  for (size_t i = 0; i < frontier.ises.size(); ++i) {
+    msg->ises.push_back(toPoint(frontier.ises[i].position));
+    if (frontier.ises[i].remaining) msg->remaining.push_back(static_cast<uint32_t>(i));
+  }
+  msg->viewpoints.clear();
+  for (const Viewpoint& v : frontier.viewpoints) {
+    surface_nbv::FrontierViewpoint out;
+    out.pose.position = toPoint(v.position);
+    out.pose.orientation.w = std::cos(0.5 * v.yaw);
+    out.pose.orientation.z = std::sin(0.5 * v.yaw);
+    out.visible_ises.assign(v.visible.begin(), v.visible.end());
+    msg->viewpoints.push_back(out);
+  }
+  msg->clusters.clear();
+  for (const Cluster& c : frontier.clusters) {
+    surface_nbv::FrontierCluster out;
+    out.viewpoints.assign(c.viewpoints.begin(), c.viewpoints.end());
+    out.gain = c.gain;
+    msg->clusters.push_back(out);
+  }
+  msg->num_ises = static_cast<uint32_t>(frontier.ises.size());
+  msg->num_remaining = static_cast<uint32_t>(frontier.remaining);
+  msg->num_scanned = frontier.scanned;
+  const FrontierStats& s = frontier.stats;
+  msg->stage_names = {"ises", "viewpoints", "merge", "visibility", "clusters", "total"};
+  msg->stage_ms = {s.ise_ms, s.viewpoints_ms, s.merge_ms, s.visibility_ms, s.clusters_ms, s.total_ms};
+}
+
+void toFrontierMarkers(const Frontier& frontier, const std_msgs::Header& header, double voxel_size,
+                       visualization_msgs::MarkerArray* markers) {
+  using visualization_msgs::Marker;
+  Marker ises = layer(header, "ises", Marker::CUBE_LIST, voxel_size);
+  ises.color.r = 1.0f, ises.color.g = 0.8f, ises.color.b = 0.1f;
+  Marker remaining = layer(header, "remaining", Marker::CUBE_LIST, voxel_size);
+  remaining.color.r = 0.9f, remaining.color.g = 0.1f, remaining.color.b = 0.1f;
+  for (const Ise& ise : frontier.ises) (ise.remaining ? remaining : ises).points.push_back(toPoint(ise.position));
+  Marker arrows = layer(header, "viewpoints", Marker::LINE_LIST, 0.05);
+  arrows.color.r = 0.1f, arrows.color.g = 0.9f, arrows.color.b = 0.2f;
+  Marker members = layer(header, "clusters", Marker::SPHERE_LIST, 0.4);
+  double max_gain = 0.0;
+  for (const Cluster& c : frontier.clusters) max_gain = std::max(max_gain, c.gain);
+  for (const Viewpoint& v : frontier.viewpoints) {
+    arrows.points.push_back(toPoint(v.position));
+    arrows.points.push_back(toPoint(v.position + v.view_direction));
+    members.points.push_back(toPoint(v.position));
+    const double gain = v.cluster >= 0 && static_cast<size_t>(v.cluster) < frontier.clusters.size()
+                            ? frontier.clusters[static_cast<size_t>(v.cluster)].gain
+                            : 0.0;
+    members.colors.push_back(gainColour(max_gain > 0.0 ? gain / max_gain : 0.0));
+  }
+  markers->markers.clear();
+  for (Marker* m : {&ises, &remaining, &arrows, &members}) {
+    if (m->points.empty()) m->action = Marker::DELETE;  // an empty list would be refused by rviz
+    markers->markers.push_back(*m);
+  }
+}
+
+}  // namespace surface_nbv

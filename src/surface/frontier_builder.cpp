@@ -1,0 +1,102 @@
+#include "surface_nbv/surface/frontier_builder.h"
+
+#include <chrono>
+
+#include "surface_nbv/util/parallel_for.h"
+
+namespace surface_nbv {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+FrontierBuilder::FrontierBuilder(const SurfaceConfig& config)
+    : config_(config),
+      extractor_(config.threads),
+      generator_(config),
+      merger_(config),
+      visibility_(config),
+      clusterer_(config) {}
+
+Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision, Frontier* frontier) {
+  const int f = collision.voxelsPerCell();
+  const Eigen::Vector3i cells = (map.gridVoxels().array() + f - 1) / f;
+  if (collision.gridCells() != cells || std::abs(collision.cellSize() - f * map.voxelSize()) > 1e-9) {
+    return Status::Error("collision map does not match the TSDF map's grid (was it built from this map?)");
+  }
+  const Clock::time_point t0 = Clock::now();
+  Frontier out;
+  FrontierStats& stats = out.stats;
+  const IseUpdateStats ise_stats = extractor_.update(map);
+  stats.full_extraction = ise_stats.full;
+  stats.blocks_changed = ise_stats.blocks_changed;
+  stats.blocks_examined = ise_stats.blocks_examined;
+  out.scanned = extractor_.scannedCount();
+  out.map_stamp = map.changeCounter();
+  const VoxelStateGrid& grid = extractor_.states();
+  const std::vector<Eigen::Vector3i> voxels = extractor_.ises();
+  out.ises.resize(voxels.size());
+  const Clock::time_point t1 = Clock::now();
+
+  // One pose per ISE (eq. 2 and the fall-backs).
+  const VoxelRayCaster rays(grid, config_.unknown_blocks_visibility);
+  const AlignedBox& bounds = map.config().bounds;
+  std::vector<Viewpoint> poses(voxels.size());
+  std::vector<PoseSearch> searches(voxels.size());
+  parallelFor(voxels.size(), config_.threads, [&](size_t i) {
+    Ise& ise = out.ises[i];
+    ise.voxel = voxels[i];
+    ise.id = grid.voxelId(voxels[i]);
+    ise.position = grid.voxelCenter(voxels[i]);
+    ise.direction = generator_.direction(grid, voxels[i]);
+    searches[i] = generator_.generate(rays, collision, bounds, voxels[i], ise.direction, &poses[i]);
+    poses[i].sources.assign(1, static_cast<uint32_t>(i));
+  });
+  std::vector<Viewpoint> accepted;
+  std::vector<uint32_t> accepted_ise;
+  accepted.reserve(voxels.size());
+  for (size_t i = 0; i < voxels.size(); ++i) {
+    stats.poses_tested += static_cast<size_t>(searches[i].tested);
+    if (!searches[i].found) {
+      out.ises[i].remaining = true;
+      out.ises[i].unknown_blocked = searches[i].unknown_blocked;
+      ++out.remaining;
+      out.remaining_unknown += searches[i].unknown_blocked ? 1 : 0;
+      continue;
+    }
+    if (searches[i].tested > 1) ++stats.fallback_poses;
+    accepted.push_back(std::move(poses[i]));
+    accepted_ise.push_back(static_cast<uint32_t>(i));
+  }
+  stats.unmerged_viewpoints = accepted.size();
+  const Clock::time_point t2 = Clock::now();
+
+  std::vector<int> group_of;
+  out.viewpoints = merger_.merge(accepted, collision, bounds, &group_of);
+  for (size_t k = 0; k < accepted_ise.size(); ++k) out.ises[accepted_ise[k]].viewpoint = group_of[k];
+  const Clock::time_point t3 = Clock::now();
+
+  stats.voxel_steps = visibility_.evaluate(rays, out.ises, &out.viewpoints);
+  const Clock::time_point t4 = Clock::now();
+
+  std::vector<std::pair<int, int>> links;
+  out.clusters = clusterer_.cluster(collision, out.ises.size(), &out.viewpoints, &links);
+  stats.links = links.size();
+  const Clock::time_point t5 = Clock::now();
+
+  stats.ise_ms = msBetween(t0, t1);
+  stats.viewpoints_ms = msBetween(t1, t2);
+  stats.merge_ms = msBetween(t2, t3);
+  stats.visibility_ms = msBetween(t3, t4);
+  stats.clusters_ms = msBetween(t4, t5);
+  stats.total_ms = msBetween(t0, t5);
+  *frontier = std::move(out);
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv

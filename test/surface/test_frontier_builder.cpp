@@ -1,0 +1,188 @@
+#include "surface_nbv/surface/frontier_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "surface_test_maps.h"
+
+using namespace surface_nbv;
+using namespace surface_nbv::test;
+
+namespace {
+
+// 16 x 16 x 8 m: ground, a 4 x 4 x 3.75 m building and a pillar; the half
+// x < 8 m has been scanned (free or occupied), the rest is unknown.
+TsdfMap halfScannedSite(int known_x = 32) {
+  TsdfMap map(gridConfig(Eigen::Vector3i(64, 64, 32)));
+  fillBox(&map, Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(known_x, 64, 32), VoxelState::kFree);
+  auto solid = [&](const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+    fillBox(&map, lo, Eigen::Vector3i(std::min(hi.x(), known_x), hi.y(), hi.z()), VoxelState::kOccupied);
+  };
+  solid(Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(64, 64, 1));     // ground
+  solid(Eigen::Vector3i(24, 24, 1), Eigen::Vector3i(40, 40, 16));  // building
+  solid(Eigen::Vector3i(12, 44, 1), Eigen::Vector3i(14, 46, 24));  // pillar
+  return map;
+}
+
+void expectSameFrontier(const Frontier& a, const Frontier& b) {
+  ASSERT_EQ(a.ises.size(), b.ises.size());
+  for (size_t i = 0; i < a.ises.size(); ++i) {
+    ASSERT_EQ(a.ises[i].id, b.ises[i].id);
+    ASSERT_EQ(a.ises[i].remaining, b.ises[i].remaining);
+    ASSERT_EQ(a.ises[i].viewpoint, b.ises[i].viewpoint);
+    ASSERT_EQ(a.ises[i].direction, b.ises[i].direction);
+  }
+  EXPECT_EQ(a.remaining, b.remaining);
+  EXPECT_EQ(a.scanned, b.scanned);
+  ASSERT_EQ(a.viewpoints.size(), b.viewpoints.size());
+  for (size_t i = 0; i < a.viewpoints.size(); ++i) {
+    ASSERT_EQ(a.viewpoints[i].position, b.viewpoints[i].position);
+    ASSERT_EQ(a.viewpoints[i].yaw, b.viewpoints[i].yaw);
+    ASSERT_EQ(a.viewpoints[i].sources, b.viewpoints[i].sources);
+    ASSERT_EQ(a.viewpoints[i].visible, b.viewpoints[i].visible);
+    ASSERT_EQ(a.viewpoints[i].cluster, b.viewpoints[i].cluster);
+  }
+  ASSERT_EQ(a.clusters.size(), b.clusters.size());
+  for (size_t i = 0; i < a.clusters.size(); ++i) {
+    ASSERT_EQ(a.clusters[i].viewpoints, b.clusters[i].viewpoints);
+    ASSERT_EQ(a.clusters[i].gain, b.clusters[i].gain);
+  }
+  EXPECT_EQ(a.stats.voxel_steps, b.stats.voxel_steps);
+}
+
+}  // namespace
+
+TEST(FrontierBuilder, AnIseInsideANarrowSlotIsInCrem) {
+  // A solid block with a one-voxel slot entering its -y face and turning
+  // towards +x; the end of the slot is unseen.
+  TsdfMap map(gridConfig(Eigen::Vector3i(40, 40, 24)));
+  fillAll(&map, VoxelState::kFree);
+  fillBox(&map, Eigen::Vector3i(10, 10, 0), Eigen::Vector3i(30, 30, 20), VoxelState::kOccupied);
+  fillBox(&map, Eigen::Vector3i(20, 10, 10), Eigen::Vector3i(21, 20, 11), VoxelState::kFree);
+  fillBox(&map, Eigen::Vector3i(21, 19, 10), Eigen::Vector3i(26, 20, 11), VoxelState::kFree);
+  fillBox(&map, Eigen::Vector3i(26, 18, 9), Eigen::Vector3i(27, 21, 12), VoxelState::kUnknown);
+  const auto collision = collisionFor(map);
+  FrontierBuilder builder(testSurfaceConfig());
+  Frontier frontier;
+  ASSERT_TRUE(builder.update(map, *collision, &frontier).ok());
+  ASSERT_EQ(frontier.ises.size(), 1u);
+  EXPECT_EQ(frontier.ises[0].voxel, Eigen::Vector3i(25, 19, 10));
+  EXPECT_NEAR((frontier.ises[0].direction - Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);  // a direction exists ...
+  EXPECT_TRUE(frontier.ises[0].remaining);                          // ... but no pose sees it
+  EXPECT_EQ(frontier.ises[0].viewpoint, -1);
+  EXPECT_EQ(frontier.remaining, 1u);
+  EXPECT_TRUE(frontier.viewpoints.empty());
+  EXPECT_TRUE(frontier.clusters.empty());
+  EXPECT_TRUE(frontier.complete());  // C_rem does not keep the mission alive
+  EXPECT_GT(frontier.stats.poses_tested, 20u);
+}
+
+TEST(FrontierBuilder, FrontierIsConsistent) {
+  const TsdfMap map = halfScannedSite();
+  const auto collision = collisionFor(map);
+  const SurfaceConfig config = testSurfaceConfig();
+  FrontierBuilder builder(config);
+  Frontier f;
+  ASSERT_TRUE(builder.update(map, *collision, &f).ok());
+  ASSERT_GT(f.ises.size(), 50u);
+  EXPECT_FALSE(f.complete());
+  EXPECT_GT(f.viewpoints.size(), 3u);
+  EXPECT_LT(f.viewpoints.size(), f.stats.unmerged_viewpoints);
+  EXPECT_EQ(f.stats.unmerged_viewpoints, f.insideCount());
+  EXPECT_TRUE(f.stats.full_extraction);
+  size_t remaining = 0, sources = 0;
+  for (size_t i = 0; i < f.ises.size(); ++i) {
+    const Ise& ise = f.ises[i];
+    EXPECT_EQ(ise.id, static_cast<uint64_t>(ise.voxel.x() + 64 * (ise.voxel.y() + 64 * ise.voxel.z())));
+    EXPECT_EQ(map.state(ise.voxel), VoxelState::kFree);
+    EXPECT_NEAR(ise.direction.norm(), 1.0, 1e-12);
+    if (ise.remaining) {
+      ++remaining;
+      EXPECT_EQ(ise.viewpoint, -1);
+      continue;
+    }
+    ASSERT_GE(ise.viewpoint, 0);
+    const auto& s = f.viewpoints[ise.viewpoint].sources;
+    EXPECT_TRUE(std::binary_search(s.begin(), s.end(), static_cast<uint32_t>(i)));
+  }
+  EXPECT_EQ(remaining, f.remaining);
+  size_t clustered = 0;
+  for (const Viewpoint& q : f.viewpoints) {
+    sources += q.sources.size();
+    EXPECT_TRUE(map.config().bounds.contains(q.position));
+    EXPECT_TRUE(collision->isFree(q.position, config.collision_radius));
+    EXPECT_TRUE(std::is_sorted(q.visible.begin(), q.visible.end()));
+    // A viewpoint made of one pose sees the ISE it was made for.
+    if (q.sources.size() == 1) {
+      EXPECT_TRUE(std::binary_search(q.visible.begin(), q.visible.end(), q.sources[0]));
+    }
+    ASSERT_GE(q.cluster, 0);
+    ASSERT_LT(q.cluster, static_cast<int>(f.clusters.size()));
+  }
+  EXPECT_EQ(sources, f.insideCount());
+  for (size_t c = 0; c < f.clusters.size(); ++c) {
+    clustered += f.clusters[c].viewpoints.size();
+    for (uint32_t i : f.clusters[c].viewpoints) EXPECT_EQ(f.viewpoints[i].cluster, static_cast<int>(c));
+    EXPECT_DOUBLE_EQ(f.clusters[c].gain, static_cast<double>(f.clusters[c].visible_ises) / f.ises.size());
+    EXPECT_GT(f.clusters[c].gain, 0.0);
+  }
+  EXPECT_EQ(clustered, f.viewpoints.size());
+  EXPECT_GT(f.stats.voxel_steps, 0u);
+  EXPECT_GE(f.stats.total_ms, f.stats.ise_ms + f.stats.viewpoints_ms + f.stats.visibility_ms - 1e-6);
+}
+
+TEST(FrontierBuilder, SameFrontierForAnyThreadCount) {
+  const TsdfMap map = halfScannedSite();
+  const auto collision = collisionFor(map);
+  SurfaceConfig one = testSurfaceConfig(), two = testSurfaceConfig();
+  two.threads = 2;
+  Frontier a, b;
+  ASSERT_TRUE(FrontierBuilder(one).update(map, *collision, &a).ok());
+  ASSERT_TRUE(FrontierBuilder(two).update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+}
+
+TEST(FrontierBuilder, IncrementalUpdateEqualsAFreshBuild) {
+  TsdfMap map = halfScannedSite(20);
+  auto collision = collisionFor(map);
+  SurfaceConfig config = testSurfaceConfig();
+  config.threads = 2;
+  FrontierBuilder builder(config);
+  Frontier incremental;
+  ASSERT_TRUE(builder.update(map, *collision, &incremental).ok());
+  for (int known_x : {28, 36, 48}) {
+    const TsdfMap more = halfScannedSite(known_x);
+    for (const auto& b : more.blocks()) {  // copy the newly scanned blocks, stamped
+      TsdfBlock* dst = map.allocateBlock(b->index);
+      bool same = true;
+      for (int i = 0; i < kBlockVoxels && same; ++i) {
+        same = dst->voxels[i].w == b->voxels[i].w && dst->voxels[i].phi == b->voxels[i].phi;
+      }
+      if (same) continue;
+      dst->voxels = b->voxels;
+      dst->change_stamp = map.beginChange();
+    }
+    collision->update(map);
+    ASSERT_TRUE(builder.update(map, *collision, &incremental).ok());
+    EXPECT_FALSE(incremental.stats.full_extraction);
+    EXPECT_EQ(incremental.stats.blocks_changed, 64u);  // two block columns of 8 x 4 newly scanned
+    EXPECT_LT(incremental.stats.blocks_examined, map.numBlocks());
+    Frontier fresh;
+    ASSERT_TRUE(FrontierBuilder(config).update(map, *collision, &fresh).ok());
+    expectSameFrontier(incremental, fresh);
+  }
+}
+
+TEST(FrontierBuilder, RefusesACollisionMapOfAnotherGrid) {
+  const TsdfMap map = halfScannedSite();
+  const TsdfMap other(gridConfig(Eigen::Vector3i(32, 32, 32)));
+  const auto collision = collisionFor(other);
+  FrontierBuilder builder(testSurfaceConfig());
+  Frontier f;
+  f.remaining = 7;
+  const Status s = builder.update(map, *collision, &f);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("collision map"), std::string::npos);
+  EXPECT_EQ(f.remaining, 7u);
+}
