@@ -49,7 +49,8 @@ def view(points, error, limit, axes, title, path):
     order = np.argsort(np.abs(error[::step]))  # largest errors drawn last, on top
     x, y, e = points[::step, a][order], points[::step, b][order], error[::step][order]
     fig, ax = plt.subplots(figsize=(10, 7))
-    sc = ax.scatter(x, y, c=100 * e, s=0.5, cmap="coolwarm", vmin=-100 * limit, vmax=100 * limit, linewidths=0)
+    size = float(np.clip(40000.0 / max(len(x), 1), 0.3, 6.0))  # sparse clouds get bigger dots
+    sc = ax.scatter(x, y, c=100 * e, s=size, cmap="coolwarm", vmin=-100 * limit, vmax=100 * limit, linewidths=0)
     ax.set_aspect("equal")
     ax.set_xlabel("xyz"[a] + " [m]")
     ax.set_ylabel("xyz"[b] + " [m]")

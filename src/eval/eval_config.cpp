@@ -31,8 +31,8 @@ Status EvalConfig::validate() const {
   if (!nonNegative(point_spacing)) return Status::Error("point_spacing expected >= 0 (0 = voxel_size / 3)");
   if (max_points == 0) return Status::Error("max_points expected > 0");
   if (threads < 1 || threads > 64) return Status::Error("threads expected in [1, 64]");
-  if (!bounds.empty() && (!bounds.min.allFinite() || !bounds.max.allFinite() ||
-                          (bounds.max.array() <= bounds.min.array()).any())) {
+  if (!bounds.empty() &&
+      (!bounds.min.allFinite() || !bounds.max.allFinite() || (bounds.max.array() <= bounds.min.array()).any())) {
     return Status::Error("bounds expected finite with min < max on every axis (or empty for automatic bounds)");
   }
   if (!nonNegative(bounds_margin)) return Status::Error("bounds_margin expected >= 0");
@@ -40,9 +40,11 @@ Status EvalConfig::validate() const {
   if (!positive(max_range) || max_range <= min_range) return Status::Error("max_range expected > min_range");
   if (!nonNegative(collision_radius)) return Status::Error("collision_radius expected >= 0");
   if (!positive(free_space_cell)) return Status::Error("free_space_cell expected > 0");
-  if (!(max_incidence_deg > 0.0 && max_incidence_deg < 90.0)) return Status::Error("max_incidence_deg expected in (0, 90)");
+  if (!(max_incidence_deg > 0.0 && max_incidence_deg < 90.0))
+    return Status::Error("max_incidence_deg expected in (0, 90)");
   if (visibility_rays < 1 || visibility_rays > 4096) return Status::Error("visibility_rays expected in [1, 4096]");
-  if (!nonNegative(projection_radius)) return Status::Error("projection_radius expected >= 0 (0 = max(voxel_size / 2, 1.5 point spacings))");
+  if (!nonNegative(projection_radius))
+    return Status::Error("projection_radius expected >= 0 (0 = max(voxel_size / 2, 1.5 point spacings))");
   if (!nonNegative(max_depth)) return Status::Error("max_depth expected >= 0 (0 = e_max)");
   if (!nonNegative(normal_radius)) return Status::Error("normal_radius expected >= 0 (0 = triangle normals)");
   if (!(normal_agreement_deg > 0.0 && normal_agreement_deg <= 90.0)) {

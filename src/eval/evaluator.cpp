@@ -45,8 +45,8 @@ Status Evaluator::evaluate(const TriangleMesh& ground_truth, const TriangleMesh&
   if (config_.prune_hidden) {
     t = Clock::now();
     FreeSpaceGrid free_space;
-    if (Status s = free_space.build(ground_truth, r.sensor_bounds, config_.free_space_cell,
-                                    config_.collision_radius, config_.threads);
+    if (Status s = free_space.build(ground_truth, r.sensor_bounds, config_.free_space_cell, config_.collision_radius,
+                                    config_.threads);
         !s) {
       return s;
     }
@@ -71,8 +71,8 @@ Status Evaluator::evaluate(const TriangleMesh& ground_truth, const TriangleMesh&
   r.error.assign(r.ground_truth.size(), std::nanf(""));
   if (r.coverage.num_covered > 0) {
     const PointIndex ground_truth_index(r.ground_truth.points, &r.visible);
-    r.error = M3c2Distance(config_).compute(r.ground_truth, ground_truth_index, r.reconstruction,
-                                            reconstruction_index, r.coverage.covered);
+    r.error = M3c2Distance(config_).compute(r.ground_truth, ground_truth_index, r.reconstruction, reconstruction_index,
+                                            r.coverage.covered);
   }
   r.error_stats = ErrorStats::of(r.error);
   r.matched = r.error_stats.count;

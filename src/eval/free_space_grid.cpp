@@ -31,8 +31,8 @@ double squaredDistanceToTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d
   return (p - (a + ab * (vb * denom) + ac * (vc * denom))).squaredNorm();
 }
 
-Status FreeSpaceGrid::build(const TriangleMesh& mesh, const AlignedBox& bounds, double cell,
-                            double collision_radius, int threads) {
+Status FreeSpaceGrid::build(const TriangleMesh& mesh, const AlignedBox& bounds, double cell, double collision_radius,
+                            int threads) {
   if (bounds.empty() || !bounds.min.allFinite() || !bounds.max.allFinite()) {
     return Status::Error("bounds expected finite and non-empty");
   }

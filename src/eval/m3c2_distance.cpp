@@ -68,7 +68,8 @@ std::vector<float> M3c2Distance::compute(const SurfaceCloud& reference, const Po
     const size_t end = std::min(n, (chunk + 1) * kChunk);
     for (size_t i = chunk * kChunk; i < end; ++i) {
       if (core[i] == 0) continue;
-      distances[i] = at(reference.points[i], reference.normals[i], reference, reference_index, compared, compared_index);
+      distances[i] =
+          at(reference.points[i], reference.normals[i], reference, reference_index, compared, compared_index);
     }
   });
   return distances;

@@ -1,17 +1,17 @@
 #include "surface_nbv/eval/point_index.h"
 
-#include <cmath>
-
 #include <pcl/features/normal_3d.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <cmath>
+
 namespace surface_nbv {
 
 struct PointIndex::Impl {
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
-  std::vector<int> original;  // tree index -> index into the full set
+  std::vector<int> original;                    // tree index -> index into the full set
   pcl::KdTreeFLANN<pcl::PointXYZ> tree{false};  // unsorted radius results: faster, still repeatable
 
   // Per-thread scratch for PCL's outputs.

@@ -53,7 +53,8 @@ std::string ReportWriter::json() const {
   JsonWriter json;
   json.beginObject().beginObject("inputs");
   json.value("reconstruction", inputs_.reconstruction).value("ground_truth", inputs_.ground_truth);
-  json.value("reconstruction_triangles", r.reconstruction_triangles).value("reconstruction_area_m2", r.reconstruction_area);
+  json.value("reconstruction_triangles", r.reconstruction_triangles)
+      .value("reconstruction_area_m2", r.reconstruction_area);
   json.value("ground_truth_triangles", r.ground_truth_triangles).value("ground_truth_area_m2", r.ground_truth_area);
   json.endObject().beginObject("settings");
   json.value("voxel_size_m", c.voxel_size).value("e_max_m", c.eMax()).value("point_spacing_m", c.spacing());
@@ -95,14 +96,14 @@ std::string ReportWriter::markdown() const {
      << "Ground truth: `" << inputs_.ground_truth << "`. Voxel size rho_v = " << c.voxel_size
      << " m, so e_max = rho_v sqrt(3) / 2 = " << cm(c.eMax()) << ".\n\n"
      << "| figure | value |\n|---|---|\n"
-     << "| surface coverage | " << fixed(100.0 * r.coverage.coverage(), 2) << " % (" << r.coverage.num_covered
-     << " of " << r.numVisible() << " visible samples) |\n"
+     << "| surface coverage | " << fixed(100.0 * r.coverage.coverage(), 2) << " % (" << r.coverage.num_covered << " of "
+     << r.numVisible() << " visible samples) |\n"
      << "| M3C2 mean error | " << cm(e.mean) << " |\n"
      << "| M3C2 std. dev. | " << cm(e.std_dev) << " |\n"
      << "| RMSE | " << cm(e.rmse) << " |\n"
      << "| mean absolute error | " << cm(e.mean_abs) << " |\n"
-     << "| error percentiles 5 / 25 / 50 / 75 / 95 | " << cm(e.p5) << " / " << cm(e.p25) << " / " << cm(e.p50)
-     << " / " << cm(e.p75) << " / " << cm(e.p95) << " |\n"
+     << "| error percentiles 5 / 25 / 50 / 75 / 95 | " << cm(e.p5) << " / " << cm(e.p25) << " / " << cm(e.p50) << " / "
+     << cm(e.p75) << " / " << cm(e.p95) << " |\n"
      << "| largest absolute error | " << cm(e.max_abs) << " |\n"
      << "| matched samples (covered, with a distance) | " << r.matched << " |\n\n"
      << "| input | triangles | area | samples |\n|---|---|---|---|\n"

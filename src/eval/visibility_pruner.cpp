@@ -42,8 +42,7 @@ bool clipToBox(const AlignedBox& box, const Eigen::Vector3d& origin, const Eigen
 
 }  // namespace
 
-VisibilityPruner::VisibilityPruner(const RaycastScene& scene, const FreeSpaceGrid& free_space,
-                                   const EvalConfig& config)
+VisibilityPruner::VisibilityPruner(const RaycastScene& scene, const FreeSpaceGrid& free_space, const EvalConfig& config)
     : scene_(scene), free_space_(free_space), config_(config) {
   // Area-uniform spiral over the cap of half-angle max_incidence around +z.
   const int k = config.visibility_rays;

@@ -4,17 +4,13 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <unordered_map>
+
+#include "surface_nbv/surface/point_grid.h"
 
 #include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
 namespace {
-
-int64_t cellKey(const Eigen::Vector3i& c) {
-  constexpr int64_t kOffset = 1 << 20, kMask = (1 << 21) - 1;
-  return ((c.x() + kOffset) & kMask) | (((c.y() + kOffset) & kMask) << 21) | (((c.z() + kOffset) & kMask) << 42);
-}
 
 int findRoot(std::vector<int>* parent, int i) {
   while ((*parent)[i] != i) {
@@ -45,26 +41,17 @@ std::vector<Cluster> ViewpointClusterer::cluster(const CollisionMap& collision, 
                                                  std::vector<std::pair<int, int>>* links) const {
   std::vector<Viewpoint>& q = *viewpoints;
   const int n = static_cast<int>(q.size());
-  const double cell = config_.d_nu_max;
-  auto cellOf = [cell](const Eigen::Vector3d& p) -> Eigen::Vector3i { return (p / cell).array().floor().cast<int>(); };
-  std::unordered_map<int64_t, std::vector<int>> grid;
-  for (int i = 0; i < n; ++i) grid[cellKey(cellOf(q[i].position))].push_back(i);
+  AlignedBox box;
+  for (const Viewpoint& v : q) box.extend(v.position);
+  PointGrid grid(box, config_.d_nu_max, q.size());
+  for (int i = 0; i < n; ++i) grid.insert(i, q[i].position);
   // Viewpoints within d_nu_max of i, by distance then index.
   auto around = [&](int i) {
     std::vector<std::pair<double, int>> out;
-    const Eigen::Vector3i c = cellOf(q[i].position);
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = grid.find(cellKey(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == grid.end()) continue;
-          for (int j : it->second) {
-            const double d = (q[j].position - q[i].position).norm();
-            if (j != i && d < config_.d_nu_max) out.emplace_back(d, j);
-          }
-        }
-      }
-    }
+    grid.forEachNear(q[i].position, [&](int j) {
+      const double d = (q[j].position - q[i].position).norm();
+      if (j != i && d < config_.d_nu_max) out.emplace_back(d, j);
+    });
     std::sort(out.begin(), out.end());
     return out;
   };

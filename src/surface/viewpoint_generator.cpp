@@ -7,8 +7,8 @@ namespace surface_nbv {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-
-double wrapAngle(double a) { return std::remainder(a, 2.0 * M_PI); }
+// Below this horizontal length n_v has no azimuth: it is treated as vertical.
+constexpr double kMinHorizontal = 1e-6;
 
 Eigen::Vector3d fromAngles(double azimuth, double elevation) {
   return Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth),
@@ -20,6 +20,12 @@ Eigen::Vector3d fromAngles(double azimuth, double elevation) {
 ViewpointGenerator::ViewpointGenerator(const SurfaceConfig& config) : config_(config) {
   max_elevation_ = (0.5 * config_.camera.vfov_deg - config_.fov_margin_deg) * kDegToRad;
   for (double a : config_.fallback_rotations_deg) rotations_.push_back(a * kDegToRad);
+  distances_.push_back(config_.delta_pose);
+  std::vector<double> fractions = config_.fallback_distance_fractions;
+  std::sort(fractions.rbegin(), fractions.rend());
+  for (double f : fractions) {
+    if (f * config_.delta_pose < distances_.back() - 1e-9) distances_.push_back(f * config_.delta_pose);
+  }
   int n = 0;
   for (int dz = -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
@@ -45,12 +51,20 @@ Eigen::Vector3d ViewpointGenerator::direction(const VoxelStateGrid& grid, const 
   return norm > 1e-9 ? Eigen::Vector3d(sum / norm) : Eigen::Vector3d::Zero();
 }
 
+Eigen::Vector3d ViewpointGenerator::clampedDirection(double azimuth, double elevation) const {
+  return fromAngles(azimuth, std::clamp(elevation, -max_elevation_, max_elevation_));
+}
+
+Eigen::Vector3d ViewpointGenerator::clampedDirection(const Eigen::Vector3d& n_v) const {
+  return clampedDirection(std::atan2(n_v.y(), n_v.x()), std::atan2(n_v.z(), std::hypot(n_v.x(), n_v.y())));
+}
+
 std::vector<Eigen::Vector3d> ViewpointGenerator::candidateDirections(const Eigen::Vector3d& n_v) const {
   std::vector<Eigen::Vector2d> angles;  // (azimuth, elevation), before clamping
   const double horizontal = std::hypot(n_v.x(), n_v.y());
   const double elevation = std::atan2(n_v.z(), horizontal);
   std::vector<double> bases;
-  if (horizontal > 1e-6) {
+  if (horizontal > kMinHorizontal) {
     bases.push_back(std::atan2(n_v.y(), n_v.x()));
   } else {
     for (int k = 0; k < 8; ++k) bases.push_back(k * M_PI / 4.0);
@@ -64,41 +78,40 @@ std::vector<Eigen::Vector3d> ViewpointGenerator::candidateDirections(const Eigen
       angles.emplace_back(az, elevation - a);
     }
   }
-  std::vector<Eigen::Vector2d> kept;
   std::vector<Eigen::Vector3d> out;
+  out.reserve(angles.size());
   for (const Eigen::Vector2d& ae : angles) {
     // Elevation beyond +-90 degrees comes back on the other side.
     double az = ae.x(), el = ae.y();
     if (el > M_PI / 2) el = M_PI - el, az += M_PI;
     if (el < -M_PI / 2) el = -M_PI - el, az += M_PI;
-    const Eigen::Vector2d c(wrapAngle(az), std::clamp(el, -max_elevation_, max_elevation_));
-    const bool seen = std::any_of(kept.begin(), kept.end(), [&](const Eigen::Vector2d& k) {
-      return std::abs(wrapAngle(k.x() - c.x())) < 1e-9 && std::abs(k.y() - c.y()) < 1e-9;
+    const Eigen::Vector3d dir = clampedDirection(az, el);
+    const bool seen = std::any_of(out.begin(), out.end(), [&](const Eigen::Vector3d& k) {
+      return (k - dir).squaredNorm() < 1e-16;
     });
-    if (seen) continue;
-    kept.push_back(c);
-    out.push_back(fromAngles(c.x(), c.y()));
+    if (!seen) out.push_back(dir);
   }
   return out;
 }
 
 std::vector<double> ViewpointGenerator::candidateDistances(double elevation) const {
-  // The ISE's depth is the horizontal distance d cos(elevation).
-  const double closest = config_.camera.min_range / std::cos(elevation) + 1e-6;
   std::vector<double> out;
-  if (config_.delta_pose >= closest) out.push_back(config_.delta_pose);
-  for (double f : config_.fallback_distance_fractions) {
-    const double d = f * config_.delta_pose;
-    if (d >= closest && (out.empty() || d < out.back() - 1e-9)) out.push_back(d);
-  }
-  if (out.empty() || closest < out.back() - 1e-9) out.push_back(closest);
+  forEachDistance(std::cos(elevation), [&](double d) {
+    out.push_back(d);
+    return false;
+  });
   return out;
 }
 
 bool ViewpointGenerator::acceptable(const VoxelRayCaster& rays, const CollisionMap& collision,
                                     const AlignedBox& bounds, const Eigen::Vector3i& voxel,
                                     const Eigen::Vector3d& p_W) const {
-  if (!bounds.contains(p_W) || !collision.isFree(p_W, config_.collision_radius)) return false;
+  // A pose in an unknown or occupied voxel fails before the distance query.
+  Eigen::Vector3i at;
+  if (!bounds.contains(p_W) || !rays.grid().voxelOf(p_W, &at) || rays.grid().at(at) != VoxelStateGrid::kFree ||
+      !collision.isFree(p_W, config_.collision_radius)) {
+    return false;
+  }
   const Eigen::Vector3d d = rays.grid().voxelCenter(voxel) - p_W;
   const double depth = std::hypot(d.x(), d.y());
   if (depth < config_.camera.min_range || depth > config_.camera.max_range) return false;
@@ -114,21 +127,33 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
   if (n_v.squaredNorm() < 0.5) return search;
   const VoxelStateGrid& grid = rays.grid();
   const Eigen::Vector3d v = grid.voxelCenter(voxel);
-  for (const Eigen::Vector3d& dir : candidateDirections(n_v)) {
-    for (double d : candidateDistances(std::asin(std::clamp(dir.z(), -1.0, 1.0)))) {
+  auto tryDirection = [&](const Eigen::Vector3d& dir) {
+    double accepted = 0.0;
+    const bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
       ++search.tested;
       const Eigen::Vector3d p = v + d * dir;
-      if (!acceptable(rays, collision, bounds, voxel, p)) {
-        Eigen::Vector3i at;
-        if (grid.voxelOf(p, &at) && grid.at(at) == VoxelStateGrid::kUnknown) search.unknown_blocked = true;
-        continue;
+      if (acceptable(rays, collision, bounds, voxel, p)) {
+        accepted = d;
+        return true;
       }
-      pose->position = p;
+      Eigen::Vector3i at;
+      if (grid.voxelOf(p, &at) && grid.at(at) == VoxelStateGrid::kUnknown) search.unknown_blocked = true;
+      return false;
+    });
+    if (found) {
+      pose->position = v + accepted * dir;
       pose->view_direction = -dir;
       pose->yaw = std::atan2(-dir.y(), -dir.x());
       search.found = true;
-      return search;
     }
+    return found;
+  };
+  // Most ISEs need no fall-back: try n_v before listing the other directions.
+  const bool has_azimuth = std::hypot(n_v.x(), n_v.y()) > kMinHorizontal;
+  if (has_azimuth && tryDirection(clampedDirection(n_v))) return search;
+  const std::vector<Eigen::Vector3d> directions = candidateDirections(n_v);
+  for (size_t k = has_azimuth ? 1 : 0; k < directions.size(); ++k) {
+    if (tryDirection(directions[k])) return search;
   }
   return search;
 }

@@ -3,19 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+
+#include "surface_nbv/surface/point_grid.h"
 
 namespace surface_nbv {
-namespace {
-
-int64_t cellKey(const Eigen::Vector3i& c) {
-  // 21 bits per axis, offset so that negative cells stay distinct.
-  constexpr int64_t kOffset = 1 << 20, kMask = (1 << 21) - 1;
-  return ((c.x() + kOffset) & kMask) | (((c.y() + kOffset) & kMask) << 21) | (((c.z() + kOffset) & kMask) << 42);
-}
-
-}  // namespace
-
 bool ViewpointMerger::mergeable(const Viewpoint& a, const Viewpoint& b) const {
   const double d = (a.position - b.position).norm();
   if (d < config_.epsilon) return true;
@@ -24,10 +15,10 @@ bool ViewpointMerger::mergeable(const Viewpoint& a, const Viewpoint& b) const {
 
 std::vector<Viewpoint> ViewpointMerger::merge(const std::vector<Viewpoint>& poses, const CollisionMap& collision,
                                               const AlignedBox& bounds, std::vector<int>* group_of) const {
-  const double cell = std::max(config_.epsilon, config_.parallel_distance);
-  auto cellOf = [cell](const Eigen::Vector3d& p) -> Eigen::Vector3i { return (p / cell).array().floor().cast<int>(); };
-  std::unordered_map<int64_t, std::vector<int>> seeds;  // cell -> groups seeded there, ascending
-  std::vector<int> seed_pose;                           // group -> its seed pose
+  AlignedBox box;
+  for (const Viewpoint& q : poses) box.extend(q.position);
+  PointGrid seeds(box, std::max(config_.epsilon, config_.parallel_distance), poses.size());  // group ids at their seeds
+  std::vector<int> seed_pose;  // group -> its seed pose
   std::vector<Eigen::Vector3d> position_sum, direction_sum;
   std::vector<std::vector<uint32_t>> sources;
   std::vector<size_t> count;
@@ -35,19 +26,10 @@ std::vector<Viewpoint> ViewpointMerger::merge(const std::vector<Viewpoint>& pose
 
   for (size_t i = 0; i < poses.size(); ++i) {
     const Viewpoint& q = poses[i];
-    const Eigen::Vector3i c = cellOf(q.position);
     int best = -1;
-    for (int dz = -1; dz <= 1; ++dz) {
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = seeds.find(cellKey(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == seeds.end()) continue;
-          for (int g : it->second) {
-            if ((best < 0 || g < best) && mergeable(poses[seed_pose[g]], q)) best = g;
-          }
-        }
-      }
-    }
+    seeds.forEachNear(q.position, [&](int g) {
+      if ((best < 0 || g < best) && mergeable(poses[seed_pose[g]], q)) best = g;
+    });
     if (best < 0) {
       best = static_cast<int>(seed_pose.size());
       seed_pose.push_back(static_cast<int>(i));
@@ -55,7 +37,7 @@ std::vector<Viewpoint> ViewpointMerger::merge(const std::vector<Viewpoint>& pose
       direction_sum.push_back(Eigen::Vector3d::Zero());
       sources.emplace_back();
       count.push_back(0);
-      seeds[cellKey(c)].push_back(best);
+      seeds.insert(best, q.position);
     }
     ++count[best];
     position_sum[best] += q.position;

@@ -57,6 +57,7 @@ void VisibilityEvaluator::visibleFrom(const VoxelRayCaster& rays, const BlockInd
   const VoxelStateGrid& grid = rays.grid();
   const CameraAxes axes(viewpoint.yaw);
   const Eigen::Vector3d& p = viewpoint.position;
+  const VoxelRayCaster::Origin from = rays.origin(p);
   const double far = config_.camera.max_range, near = config_.camera.min_range;
   // Bounding box of the frustum: the apex and the four far corners.
   Eigen::Vector3d lo = p, hi = p;
@@ -96,7 +97,7 @@ void VisibilityEvaluator::visibleFrom(const VoxelRayCaster& rays, const BlockInd
           if (std::abs(d.dot(axes.right)) > dz * tan_half_h_ || std::abs(d.dot(axes.down)) > dz * tan_half_v_) {
             continue;
           }
-          if (rays.clear(p, ises[i].voxel, steps)) visible->push_back(i);
+          if (rays.clear(from, ises[i].voxel, steps)) visible->push_back(i);
         }
       }
     }

@@ -31,7 +31,8 @@ constexpr char kUsage[] =
     "usage: nbv_evaluate --reconstruction MESH --ground-truth MESH|SCENE --voxel-size M\n"
     "                    [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]  (ground truth)\n"
     "                    [--bounds X0,Y0,Z0,X1,Y1,Z1] [--spacing M] [--min-range M] [--max-range M]\n"
-    "                    [--collision-radius M] [--no-pruning] [--seed N] [--threads N] [--out DIR] [--plots]\n";
+    "                    [--collision-radius M] [--no-pruning] [--seed N] [--threads N (2)] [--out DIR] [--plots]\n"
+    "Samples every --spacing (default voxel size / 3); coverage within e_max = voxel size * sqrt(3) / 2.\n";
 
 int badArguments(const std::string& message) {
   std::cerr << "nbv_evaluate: " << message << "\n" << kUsage;
@@ -99,15 +100,17 @@ int makePlots(const std::string& out_dir) {
     return 0;
   }
   std::fflush(stdout);
-  if (run({python, script, out_dir}, false) != 0) return failure("plotting failed: " + python + " " + script + " " + out_dir);
+  if (run({python, script, out_dir}, false) != 0)
+    return failure("plotting failed: " + python + " " + script + " " + out_dir);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> options = {"reconstruction", "ground-truth", "voxel-size", "bounds", "spacing",
-                                      "min-range", "max-range", "collision-radius", "seed", "threads", "out"};
+  std::vector<std::string> options = {"reconstruction", "ground-truth", "voxel-size", "bounds",
+                                      "spacing",        "min-range",    "max-range",  "collision-radius",
+                                      "seed",           "threads",      "out"};
   for (const std::string& name : sceneOptionNames()) {
     if (name != "scene") options.push_back(name);
   }
@@ -144,15 +147,17 @@ int main(int argc, char** argv) {
   std::printf("samples every %.3f m: %zu ground truth (%zu visible, %zu hidden), %zu reconstruction\n",
               config.spacing(), result.ground_truth.size(), result.numVisible(), result.numHidden(),
               result.reconstruction.size());
-  std::printf("coverage %.2f %% within e_max = %.2f cm; M3C2 error over %zu samples: mean %.2f cm, std %.2f cm, "
-              "RMSE %.2f cm\n",
-              100.0 * result.coverage.coverage(), 100.0 * config.eMax(), result.matched, 100.0 * e.mean,
-              100.0 * e.std_dev, 100.0 * e.rmse);
+  std::printf(
+      "coverage %.2f %% within e_max = %.2f cm; M3C2 error over %zu samples: mean %.2f cm, std %.2f cm, "
+      "RMSE %.2f cm\n",
+      100.0 * result.coverage.coverage(), 100.0 * config.eMax(), result.matched, 100.0 * e.mean, 100.0 * e.std_dev,
+      100.0 * e.rmse);
   std::printf("time %.2f s (%d threads)\n", result.timings.total_s, config.threads);
   EvalInputs inputs{reconstruction_path, ground_truth_config.scene};
   if (Status s = ReportWriter(result, inputs).write(out_dir); !s) return failure(s.message());
-  std::printf("wrote %s/report.json, report.md, ground_truth_visible.ply, ground_truth_hidden.ply, coverage.ply, "
-              "error.ply\n",
-              out_dir.c_str());
+  std::printf(
+      "wrote %s/report.json, report.md, ground_truth_visible.ply, ground_truth_hidden.ply, coverage.ply, "
+      "error.ply\n",
+      out_dir.c_str());
   return args.has("plots") ? makePlots(out_dir) : 0;
 }

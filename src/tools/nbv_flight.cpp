@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/map/mesh_extractor.h"
 #include "surface_nbv/map/tsdf_integrator.h"
@@ -167,6 +168,11 @@ int main(int argc, char** argv) {
   const TriangleMesh reconstruction = mesher.mesh();
   if (Status s = mesher.exportMesh(out_dir + "/reconstruction.ply"); !s) return fail(s.message());
   if (Status s = saveMap(map, out_dir + "/map.tsdf"); !s) return fail(s.message());
+  EvalConfig eval_config;
+  eval_config.voxel_size = voxel;
+  eval_config.threads = threads;
+  EvalResult eval;
+  if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
 
   JsonWriter json;
   json.beginObject()
@@ -189,7 +195,11 @@ int main(int argc, char** argv) {
       .value("occupied_voxels", occupied)
       .value("reconstruction_triangles", reconstruction.numTriangles())
       .value("reconstruction_area_m2", reconstruction.area())
-      .value("scene_area_m2", mesh.area());
+      .value("scene_area_m2", mesh.area())
+      .value("coverage", eval.coverage.coverage())
+      .value("error_mean_m", eval.error_stats.mean)
+      .value("error_std_m", eval.error_stats.std_dev)
+      .value("rmse_m", eval.error_stats.rmse);
   json.beginArray("per_frame");
   for (const FrameRecord& r : records) {
     json.beginObject().value("s_m", r.s).value("ms", r.ms).value("integrate_ms", r.integrate_ms);
@@ -213,7 +223,11 @@ int main(int argc, char** argv) {
      << "| map blocks / known voxels / occupied voxels | " << map.numBlocks() << " / " << known << " / " << occupied
      << " |\n"
      << "| reconstruction | " << reconstruction.numTriangles() << " triangles, " << reconstruction.area()
-     << " m^2 (scene: " << mesh.area() << " m^2) |\n";
+     << " m^2 (scene: " << mesh.area() << " m^2) |\n"
+     << "| coverage of the visible ground truth (e_max = " << 100.0 * voxel * std::sqrt(3.0) / 2.0 << " cm) | "
+     << 100.0 * eval.coverage.coverage() << " % |\n"
+     << "| signed error mean / std / RMSE | " << 100.0 * eval.error_stats.mean << " / "
+     << 100.0 * eval.error_stats.std_dev << " / " << 100.0 * eval.error_stats.rmse << " cm |\n";
 
   std::printf("frames: %zu, seeing the structure: %zu, mean valid pixels: %.1f%%\n", records.size(), seeing,
               100.0 * valid_sum / records.size());
@@ -223,6 +237,9 @@ int main(int argc, char** argv) {
               "(%.0f m^2 of %.0f m^2 scene surface)\n",
               voxel, integrate_median_ms, map.numBlocks(), known, reconstruction.numTriangles(), reconstruction.area(),
               mesh.area());
+  std::printf("evaluation against the scene: coverage %.1f %%, error mean %.2f cm, std %.2f cm, RMSE %.2f cm\n",
+              100.0 * eval.coverage.coverage(), 100.0 * eval.error_stats.mean, 100.0 * eval.error_stats.std_dev,
+              100.0 * eval.error_stats.rmse);
   std::printf("wrote %s/report.json, report.md, scene.ply, reconstruction.ply, map.tsdf and depth_*.png\n",
               out_dir.c_str());
   return seeing > 0 ? 0 : 1;

@@ -1,11 +1,10 @@
 // Meshes with known geometry for the evaluation tests.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <functional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/sim/triangle_mesh.h"

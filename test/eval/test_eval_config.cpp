@@ -1,4 +1,4 @@
-#include "surface_nbv/eval/eval_config.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "surface_nbv/eval/eval_config.h"
 
 namespace surface_nbv {
 namespace {

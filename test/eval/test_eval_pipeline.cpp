@@ -1,12 +1,12 @@
 // The whole chain on the `box` scene: depth rendered along a scripted flight,
 // fused into the TSDF, meshed by Marching Cubes, and the mesh evaluated
 // against the scene. Prints coverage and RMSE and bounds them.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
-
-#include <gtest/gtest.h>
 
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/map/mesh_extractor.h"
@@ -63,10 +63,11 @@ TEST(EvalPipeline, BoxSceneFlightThroughTsdfAndMarchingCubes) {
   EvalResult r;
   ASSERT_TRUE(Evaluator(config).evaluate(box, reconstruction, &r));
   const ErrorStats& e = r.error_stats;
-  std::printf("box flight at %.2f m voxels: %zu triangles, coverage %.2f %% (e_max %.2f cm), M3C2 mean %.2f cm, "
-              "std %.2f cm, RMSE %.2f cm over %zu of %zu visible samples\n",
-              voxel, reconstruction.numTriangles(), 100.0 * r.coverage.coverage(), 100.0 * config.eMax(),
-              100.0 * e.mean, 100.0 * e.std_dev, 100.0 * e.rmse, r.matched, r.numVisible());
+  std::printf(
+      "box flight at %.2f m voxels: %zu triangles, coverage %.2f %% (e_max %.2f cm), M3C2 mean %.2f cm, "
+      "std %.2f cm, RMSE %.2f cm over %zu of %zu visible samples\n",
+      voxel, reconstruction.numTriangles(), 100.0 * r.coverage.coverage(), 100.0 * config.eMax(), 100.0 * e.mean,
+      100.0 * e.std_dev, 100.0 * e.rmse, r.matched, r.numVisible());
   EXPECT_NEAR(r.numVisible(), 8000.0, 2.0);  // the floor face is hidden
   // The flight sees every face: nearly everything is covered and matched.
   EXPECT_GE(r.coverage.coverage(), 0.995);

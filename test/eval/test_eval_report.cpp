@@ -1,4 +1,6 @@
 // Error statistics, the M3C2 cylinder, PLY clouds and the report files.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -8,8 +10,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "eval_test_helpers.h"
 #include "surface_nbv/eval/error_stats.h"
@@ -78,13 +78,13 @@ TEST(M3c2Distance, DifferenceOfMeanProjectionsInTheCylinder) {
   EXPECT_TRUE(std::isnan(m3c2.at(Vector3f::Zero(), Vector3f::UnitZ(), reference, reference_index, far, far_index)));
   // Accepting every normal lets the column in: its points average to the plane's height.
   config.normal_agreement_deg = 90.0;
-  const float all = M3c2Distance(config).at(Vector3f::Zero(), Vector3f::UnitZ(), reference, reference_index,
-                                            compared, compared_index);
+  const float all = M3c2Distance(config).at(Vector3f::Zero(), Vector3f::UnitZ(), reference, reference_index, compared,
+                                            compared_index);
   EXPECT_NEAR(all, 0.07f, 1e-6f);
   // Too few neighbours: none.
   config.min_neighbours = 100;
   EXPECT_TRUE(std::isnan(M3c2Distance(config).at(Vector3f::Zero(), Vector3f::UnitZ(), reference, reference_index,
-                                                  compared, compared_index)));
+                                                 compared, compared_index)));
   // compute() fills core points only.
   std::vector<uint8_t> core(reference.size(), 0);
   core[41 * 20 + 20] = 1;
@@ -160,9 +160,9 @@ TEST(ReportWriter, WritesReportsAndCloudsThatAddUp) {
   EXPECT_EQ(plyVertices(dir + "/error.ply"), result.matched);
   EXPECT_GT(result.matched, 0u);
   const std::string json = readFile(dir + "/report.json");
-  for (const char* key : {"\"coverage_percent\"", "\"rmse\"", "\"std_dev\"", "\"ground_truth_triangles\": 12",
-                          "\"reconstruction\": \"half.ply\"", "\"e_max_m\": 0.2598076211", "\"abs_p95\"",
-                          "\"ground_truth\": 9600,"}) {
+  for (const char* key :
+       {"\"coverage_percent\"", "\"rmse\"", "\"std_dev\"", "\"ground_truth_triangles\": 12",
+        "\"reconstruction\": \"half.ply\"", "\"e_max_m\": 0.2598076211", "\"abs_p95\"", "\"ground_truth\": 9600,"}) {
     EXPECT_NE(json.find(key), std::string::npos) << key << " missing from\n" << json;
   }
   EXPECT_NE(json.find("\"visible\": " + std::to_string(result.numVisible()) + ","), std::string::npos);

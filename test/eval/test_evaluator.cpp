@@ -1,7 +1,7 @@
 // The figures of "Tests and figures" in issue 4 on meshes with known geometry:
 // identity, a 2 cm shift along the normals, half a mesh, a noisy copy, and
 // exact repetition whatever the thread count.
-#include "surface_nbv/eval/evaluator.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
@@ -10,9 +10,8 @@
 #include <random>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "eval_test_helpers.h"
+#include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/sim/procedural_scenes.h"
 
@@ -65,7 +64,7 @@ EvalResult evaluate(const TriangleMesh& ground_truth, const TriangleMesh& recons
 TEST(Evaluator, TheGroundTruthItselfIsFullyCoveredWithZeroError) {
   const TriangleMesh box = boxScene();
   const EvalResult r = evaluate(box, box);
-  ASSERT_EQ(r.ground_truth.size(), 9600u);  // 96 m^2 every 0.1 m
+  ASSERT_EQ(r.ground_truth.size(), 9600u);         // 96 m^2 every 0.1 m
   EXPECT_EQ(r.numVisible(), offTheFloor(box, r));  // the floor face is hidden
   EXPECT_NEAR(r.numVisible(), 8000.0, 2.0);
   EXPECT_EQ(r.coverage.num_covered, r.numVisible());
@@ -130,10 +129,13 @@ TEST(Evaluator, ANoisyCopyGivesTheNoisesStandardDeviation) {
   std::normal_distribution<double> noise(0.0, sigma);
   std::vector<double> offsets;
   std::vector<int> face_of;
-  const TriangleMesh noisy = gridBox(boxLo(), boxHi(), 0.5, [&](int, const Vector3d&) {
-    offsets.push_back(noise(rng));
-    return offsets.back();
-  }, &face_of);
+  const TriangleMesh noisy = gridBox(
+      boxLo(), boxHi(), 0.5,
+      [&](int, const Vector3d&) {
+        offsets.push_back(noise(rng));
+        return offsets.back();
+      },
+      &face_of);
   std::vector<bool> visible_faces(eval_test::kFaces, true);
   visible_faces[eval_test::kBottom] = false;
   double mean = 0.0, std_dev = 0.0;

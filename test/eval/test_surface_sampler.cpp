@@ -1,12 +1,11 @@
-#include "surface_nbv/eval/surface_sampler.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "eval_test_helpers.h"
 #include "surface_nbv/eval/free_space_grid.h"
+#include "surface_nbv/eval/surface_sampler.h"
 #include "surface_nbv/sim/mesh_builder.h"
 #include "surface_nbv/sim/procedural_scenes.h"
 

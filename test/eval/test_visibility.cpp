@@ -1,9 +1,9 @@
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "eval_test_helpers.h"
 #include "surface_nbv/eval/free_space_grid.h"
@@ -65,9 +65,9 @@ TEST(FreeSpaceGrid, ReachesAroundAClosedBoxButNotInsideIt) {
         const Vector3d c = Vector3d(-6, -6, 0) + 0.5 * Vector3d(x + 0.5, y + 0.5, z + 0.5);
         double d2 = 1e9;
         for (const Eigen::Vector3i& t : mesh.triangles) {
-          d2 = std::min(d2, squaredDistanceToTriangle(c, mesh.vertices[t[0]].cast<double>(),
-                                                      mesh.vertices[t[1]].cast<double>(),
-                                                      mesh.vertices[t[2]].cast<double>()));
+          d2 = std::min(
+              d2, squaredDistanceToTriangle(c, mesh.vertices[t[0]].cast<double>(), mesh.vertices[t[1]].cast<double>(),
+                                            mesh.vertices[t[2]].cast<double>()));
         }
         const bool in_box = (c.array().abs().head<2>() < 2.0).all() && c.z() < 4.0;
         blocked += d2 <= 1.0 ? 1 : 0;
@@ -92,7 +92,8 @@ TEST(FreeSpaceGrid, ClearanceNeverOverstatesTheDistanceToReachableSpace) {
     for (int y = 0; y < 24; ++y) {
       for (int x = 0; x < 24; ++x) {
         const Vector3d c0 = lo + 0.5 * Vector3d(x, y, z);
-        if (grid.reachable(c0 + Vector3d::Constant(0.25))) reachable_cells.emplace_back(c0, c0 + Vector3d::Constant(0.5));
+        if (grid.reachable(c0 + Vector3d::Constant(0.25)))
+          reachable_cells.emplace_back(c0, c0 + Vector3d::Constant(0.5));
       }
     }
   }
@@ -102,7 +103,8 @@ TEST(FreeSpaceGrid, ClearanceNeverOverstatesTheDistanceToReachableSpace) {
   for (int trial = 0; trial < 2000; ++trial) {
     const Vector3d p = lo + Vector3d(12 * u(rng), 12 * u(rng), 8 * u(rng));
     double nearest = 1e9;
-    for (const AlignedBox& b : reachable_cells) nearest = std::min(nearest, (p - p.cwiseMax(b.min).cwiseMin(b.max)).norm());
+    for (const AlignedBox& b : reachable_cells)
+      nearest = std::min(nearest, (p - p.cwiseMax(b.min).cwiseMin(b.max)).norm());
     const double clearance = std::max(0, grid.cellsToReachable(p) - 1) * 0.5;
     ASSERT_LE(clearance, nearest + 1e-9) << p.transpose();
     ASSERT_GE(clearance, nearest - 2.0 * std::sqrt(3.0) * 0.5) << p.transpose();
@@ -158,8 +160,8 @@ TEST(VisibilityPruner, PrunesTheInsideOfAClosedBoxAndItsFloor) {
   }
   EXPECT_EQ(p.count, expected);
   EXPECT_NEAR(static_cast<double>(expected) / outer_faces, 5.0 / 6.0, 0.01);
-  std::printf("hollow box: %zu samples, %zu visible (outer faces but the floor), %zu pruned\n", p.cloud.size(),
-              p.count, p.cloud.size() - p.count);
+  std::printf("hollow box: %zu samples, %zu visible (outer faces but the floor), %zu pruned\n", p.cloud.size(), p.count,
+              p.cloud.size() - p.count);
 }
 
 TEST(VisibilityPruner, SeesASingleSheetRoomFromOutsideAndTurnsItsNormalsOut) {

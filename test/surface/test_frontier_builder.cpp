@@ -71,11 +71,30 @@ TEST(FrontierBuilder, AnIseInsideANarrowSlotIsInCrem) {
   EXPECT_NEAR((frontier.ises[0].direction - Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);  // a direction exists ...
   EXPECT_TRUE(frontier.ises[0].remaining);                          // ... but no pose sees it
   EXPECT_EQ(frontier.ises[0].viewpoint, -1);
+  EXPECT_FALSE(frontier.ises[0].unknown_blocked);  // no candidate waits on unknown space
   EXPECT_EQ(frontier.remaining, 1u);
+  EXPECT_EQ(frontier.remaining_unknown, 0u);
   EXPECT_TRUE(frontier.viewpoints.empty());
   EXPECT_TRUE(frontier.clusters.empty());
   EXPECT_TRUE(frontier.complete());  // C_rem does not keep the mission alive
   EXPECT_GT(frontier.stats.poses_tested, 20u);
+}
+
+TEST(FrontierBuilder, IsesWhosePosesLieInUnknownSpaceAreMarked) {
+  // The half-scanned wall of the extractor test: a 6 x 6 x 4 m world where
+  // the known free space is 2 m deep and every candidate pose is too close
+  // to the wall, the bounds or unknown space, some of them inside the latter.
+  TsdfMap map(gridConfig(Eigen::Vector3i(24, 24, 16)));
+  fillBox(&map, Eigen::Vector3i(12, 0, 0), Eigen::Vector3i(13, 12, 16), VoxelState::kOccupied);
+  fillBox(&map, Eigen::Vector3i(4, 0, 0), Eigen::Vector3i(12, 12, 16), VoxelState::kFree);
+  const auto collision = collisionFor(map);
+  FrontierBuilder builder(testSurfaceConfig());
+  Frontier frontier;
+  ASSERT_TRUE(builder.update(map, *collision, &frontier).ok());
+  ASSERT_EQ(frontier.ises.size(), 16u);
+  EXPECT_EQ(frontier.remaining, 16u);
+  EXPECT_EQ(frontier.remaining_unknown, 16u);
+  for (const Ise& ise : frontier.ises) EXPECT_TRUE(ise.unknown_blocked);
 }
 
 TEST(FrontierBuilder, FrontierIsConsistent) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -75,6 +76,16 @@ TEST(VoxelRayCaster, WalksExactlyTheVoxelsTheSegmentCrosses) {
     if (manhattan > 0) {
       EXPECT_EQ((target - previous).cwiseAbs().sum(), 1);
     }
+    // Walking back from the target visits the same voxels in reverse.
+    std::vector<Eigen::Vector3i> back;
+    uint64_t back_steps = 0;
+    ASSERT_TRUE(rays.walkBack(rays.origin(grid.origin() + from * kVoxel), target, &back_steps, [&](size_t i) {
+      back.push_back(voxelOfIndex(grid, i));
+      return true;
+    }));
+    std::reverse(back.begin(), back.end());
+    ASSERT_EQ(back, walked);
+    EXPECT_EQ(back_steps, steps);
   }
 }
 
@@ -91,7 +102,7 @@ TEST(VoxelRayCaster, OccupiedBlocksAndUnknownBlocksOnlyWhenAsked) {
     const VoxelStateGrid grid = gridOf(map);
     steps = 0;
     EXPECT_FALSE(VoxelRayCaster(grid, true).clear(from, target, &steps));
-    EXPECT_EQ(steps, 9u);  // stopped on entering voxel 10
+    EXPECT_EQ(steps, 20u);  // walked back from voxel 30, stopped on entering voxel 10
     EXPECT_TRUE(VoxelRayCaster(grid, false).clear(from, target, &steps));
   }
   setState(&map, Eigen::Vector3i(20, 4, 4), VoxelState::kOccupied);

@@ -12,9 +12,10 @@
 namespace surface_nbv {
 
 struct CoverageResult {
-  std::vector<float> nearest;   // per ground-truth sample: distance to the nearest
-                                // reconstructed sample (NaN when hidden or nothing to find)
-  std::vector<uint8_t> covered; // per ground-truth sample
+  // Per ground-truth sample: distance to the nearest reconstructed sample
+  // (NaN when hidden or nothing to find), and whether it is within e_max.
+  std::vector<float> nearest;
+  std::vector<uint8_t> covered;
   size_t visible = 0, num_covered = 0;
 
   double coverage() const { return visible > 0 ? static_cast<double>(num_covered) / visible : 0.0; }

@@ -13,7 +13,7 @@ struct ErrorStats {
   size_t count = 0;
   double mean = 0.0, std_dev = 0.0, rmse = 0.0, mean_abs = 0.0, max_abs = 0.0;
   double p5 = 0.0, p25 = 0.0, p50 = 0.0, p75 = 0.0, p95 = 0.0;  // signed percentiles
-  double abs_p95 = 0.0;  // 95th percentile of |error|
+  double abs_p95 = 0.0;                                         // 95th percentile of |error|
 
   static ErrorStats of(const std::vector<float>& errors);
 };

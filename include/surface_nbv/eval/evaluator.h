@@ -24,17 +24,17 @@ struct EvalTimings {
 };
 
 struct EvalResult {
-  EvalConfig config;                  // as used
-  AlignedBox sensor_bounds;           // where sensor positions were looked for
+  EvalConfig config;         // as used
+  AlignedBox sensor_bounds;  // where sensor positions were looked for
   size_t ground_truth_triangles = 0, reconstruction_triangles = 0;
   double ground_truth_area = 0.0, reconstruction_area = 0.0;  // m^2
   size_t free_space_cells = 0, reachable_cells = 0;
-  SurfaceCloud ground_truth;          // normals turned to the side they are seen from
+  SurfaceCloud ground_truth;  // normals turned to the side they are seen from
   SurfaceCloud reconstruction;
-  std::vector<uint8_t> visible;       // per ground-truth sample
+  std::vector<uint8_t> visible;  // per ground-truth sample
   CoverageResult coverage;
-  std::vector<float> error;           // signed distance per ground-truth sample, NaN unless matched
-  size_t matched = 0;                 // covered samples with a distance
+  std::vector<float> error;  // signed distance per ground-truth sample, NaN unless matched
+  size_t matched = 0;        // covered samples with a distance
   ErrorStats error_stats;
   EvalTimings timings;
 

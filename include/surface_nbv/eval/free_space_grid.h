@@ -6,10 +6,9 @@
 // are thread safe.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/common.h"
 #include "surface_nbv/sim/triangle_mesh.h"
@@ -23,7 +22,7 @@ class FreeSpaceGrid {
   Status build(const TriangleMesh& mesh, const AlignedBox& bounds, double cell, double collision_radius,
                int threads = 1);
 
-  // True if p lies in a reachable collision-free cell (false outside the bounds).
+  // True if p lies in a reachable collision-free cell (false outside the grid).
   bool reachable(const Eigen::Vector3d& p) const;
   // Chebyshev distance in cells from p's cell to the nearest reachable cell:
   // 0 in one, at most 255, -1 outside the grid. Every point of a reachable
@@ -39,8 +38,8 @@ class FreeSpaceGrid {
  private:
   enum : uint8_t { kFree = 0, kBlocked = 1, kReachable = 2 };
   size_t linear(int x, int y, int z) const {
-    return static_cast<size_t>(x) + static_cast<size_t>(dims_.x()) * (static_cast<size_t>(y) +
-                                                                        static_cast<size_t>(dims_.y()) * z);
+    return static_cast<size_t>(x) +
+           static_cast<size_t>(dims_.x()) * (static_cast<size_t>(y) + static_cast<size_t>(dims_.y()) * z);
   }
   void markBlocked(const TriangleMesh& mesh, double collision_radius, int threads);
   void floodFromOutside();

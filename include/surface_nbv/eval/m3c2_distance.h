@@ -12,10 +12,9 @@
 // agree with it. Const and thread safe.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/eval/point_index.h"

@@ -4,12 +4,11 @@
 // Written to a temporary name and renamed, so readers never see half a file.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/util/status.h"
 

@@ -3,11 +3,10 @@
 // this header. Built once; the const queries are thread safe.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace surface_nbv {
 

@@ -5,10 +5,9 @@
 // by chance. Points are in the mesh's frame (metres), float like the mesh.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/sim/triangle_mesh.h"
 #include "surface_nbv/util/status.h"

@@ -6,10 +6,9 @@
 // max_range] before it hits a triangle. Const and thread safe.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/eval/free_space_grid.h"

@@ -13,6 +13,7 @@
 // distance that puts v at the camera's min range. Const: thread-safe.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -57,9 +58,28 @@ class ViewpointGenerator {
   std::vector<double> candidateDistances(double elevation) const;
 
  private:
+  // The direction with this azimuth and the elevation clamped to the usable FOV.
+  Eigen::Vector3d clampedDirection(double azimuth, double elevation) const;
+  Eigen::Vector3d clampedDirection(const Eigen::Vector3d& n_v) const;
+  // Calls fn(d) for the candidate distances along a direction whose
+  // horizontal part has length cos_elevation, in order, until fn returns
+  // true; returns whether it did. The ISE's depth is d cos(elevation).
+  template <typename Fn>
+  bool forEachDistance(double cos_elevation, Fn&& fn) const {
+    const double closest = config_.camera.min_range / cos_elevation + 1e-6;
+    double last = std::numeric_limits<double>::infinity();
+    for (double d : distances_) {
+      if (d < closest) break;
+      if (fn(d)) return true;
+      last = d;
+    }
+    return closest < last - 1e-9 && fn(closest);
+  }
+
   SurfaceConfig config_;
   double max_elevation_;          // rad, |elevation| of a usable direction
   std::vector<double> rotations_; // rad
+  std::vector<double> distances_; // delta_pose and its fractions, descending
   Eigen::Vector3d offsets_[26];   // unit offsets to the 26 neighbours
   Eigen::Vector3i neighbours_[26];
 };
