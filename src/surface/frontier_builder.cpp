@@ -1,8 +1,9 @@
 #include "surface_nbv/surface/frontier_builder.h"
 
 #include <chrono>
+#include <cmath>
 
-#include "surface_nbv/util/parallel_for.h"
+#include "surface_nbv/surface/chunked_for.h"
 
 namespace surface_nbv {
 namespace {
@@ -48,7 +49,7 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
   const AlignedBox& bounds = map.config().bounds;
   std::vector<Viewpoint> poses(voxels.size());
   std::vector<PoseSearch> searches(voxels.size());
-  parallelFor(voxels.size(), config_.threads, [&](size_t i) {
+  parallelForChunked(voxels.size(), config_.threads, 64, [&](size_t i) {
     Ise& ise = out.ises[i];
     ise.voxel = voxels[i];
     ise.id = grid.voxelId(voxels[i]);

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "surface_nbv/util/parallel_for.h"
+#include "surface_nbv/surface/chunked_for.h"
 
 namespace surface_nbv {
 namespace {
@@ -140,7 +140,7 @@ IseUpdateStats IseExtractor::update(const TsdfMap& map) {
 
 void IseExtractor::apply(const TsdfMap& map, const std::vector<size_t>& changed, IseUpdateStats* stats) {
   stats->blocks_changed = changed.size();
-  parallelFor(changed.size(), threads_, [&](size_t i) { states_.refreshBlock(map, blockOfSlot(changed[i])); });
+  parallelForChunked(changed.size(), threads_, 8, [&](size_t i) { states_.refreshBlock(map, blockOfSlot(changed[i])); });
   for (size_t slot : changed) present_[slot] = map.block(blockOfSlot(slot)) != nullptr ? 1 : 0;
 
   // The changed slots and their 26 neighbours, once each, by slot.
@@ -169,7 +169,7 @@ void IseExtractor::apply(const TsdfMap& map, const std::vector<size_t>& changed,
 
   for (size_t slot : dirty) stats->blocks_examined += present_[slot];
   std::vector<BlockIses> fresh(dirty.size());
-  parallelFor(dirty.size(), threads_, [&](size_t i) {
+  parallelForChunked(dirty.size(), threads_, 8, [&](size_t i) {
     if (present_[dirty[i]]) fresh[i] = examine(blockOfSlot(dirty[i]));
   });
   changed_ise_blocks_.clear();

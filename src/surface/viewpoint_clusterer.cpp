@@ -7,7 +7,7 @@
 
 #include "surface_nbv/surface/point_grid.h"
 
-#include "surface_nbv/util/parallel_for.h"
+#include "surface_nbv/surface/chunked_for.h"
 
 namespace surface_nbv {
 namespace {
@@ -58,7 +58,7 @@ std::vector<Cluster> ViewpointClusterer::cluster(const CollisionMap& collision, 
 
   // Neighbours within d_nu, each pair tested once (by its smaller index).
   std::vector<std::vector<int>> near(n);
-  parallelFor(q.size(), config_.threads, [&](size_t i) {
+  parallelForChunked(q.size(), config_.threads, 32, [&](size_t i) {
     for (const auto& [d, j] : around(static_cast<int>(i))) {
       if (d >= config_.d_nu) break;
       if (j > static_cast<int>(i) && segmentFree(collision, q[i].position, q[j].position)) near[i].push_back(j);
@@ -72,7 +72,7 @@ std::vector<Cluster> ViewpointClusterer::cluster(const CollisionMap& collision, 
   // d_nu_max) until it finds one: the first radius of that sequence beyond
   // its nearest reachable viewpoint, keeping every reachable one inside it.
   std::vector<std::vector<int>> grown(n);
-  parallelFor(q.size(), config_.threads, [&](size_t i) {
+  parallelForChunked(q.size(), config_.threads, 32, [&](size_t i) {
     if (linked[i]) return;
     double radius = -1.0;
     for (const auto& [d, j] : around(static_cast<int>(i))) {

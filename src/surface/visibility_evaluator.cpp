@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surface_nbv/util/parallel_for.h"
+#include "surface_nbv/surface/chunked_for.h"
 
 namespace surface_nbv {
 namespace {
@@ -109,7 +109,7 @@ uint64_t VisibilityEvaluator::evaluate(const VoxelRayCaster& rays, const std::ve
                                        std::vector<Viewpoint>* viewpoints) const {
   const BlockIndex block_index = index(rays.grid(), ises);
   std::vector<uint64_t> steps(viewpoints->size(), 0);
-  parallelFor(viewpoints->size(), config_.threads, [&](size_t i) {
+  parallelForChunked(viewpoints->size(), config_.threads, 8, [&](size_t i) {
     visibleFrom(rays, block_index, ises, (*viewpoints)[i], &(*viewpoints)[i].visible, &steps[i]);
   });
   uint64_t total = 0;

@@ -6,7 +6,9 @@
 // along the mean view direction; when that mean pose is outside the bounds
 // or not collision-free, the seed's pose stands. Seeds, not running means,
 // decide membership, so a group cannot drift along a chain of poses, and the
-// result depends only on the input order. Const: thread-safe.
+// result depends only on the input order. The paper's test |n_i . n_j| ~ 1
+// also takes opposite directions; those are not merged here, since the mean
+// of two opposite orientations looks at neither. Const: thread-safe.
 #pragma once
 
 #include <vector>

@@ -1,0 +1,103 @@
+// Collision-free paths for the UAV between two poses (x, y, z, yaw) with
+// OMPL's LazyPRM* over the map bounds (METHOD.md, "Cluster graph and tour",
+// "Replanning").
+//
+// Configuration space: R^3 positions only; the yaw is interpolated linearly
+// (shortest way round) along the path by arc length. The collision body is a
+// ball, so yaw never changes validity: sampling SE(2)xR would only add a
+// dimension the roadmap must cover and a weight to tune in the metric, while
+// the tracker turns the yaw independently of the translation.
+//
+// Validity: a state is valid iff CollisionMap::isFree(p, collision_radius +
+// resolution / 2); motions are checked every `resolution` metres, so every
+// point of an accepted edge lies within resolution / 2 of a checked state and
+// is itself clear of collision_radius. Unknown space counts as an obstacle if
+// the CollisionMap was built with unknown_is_obstacle (its default).
+//
+// The roadmap persists between plan() calls (multi-query). mapChanged() marks
+// every roadmap vertex and edge as unchecked (LazyPRM::clearValidity), so the
+// next queries re-check, lazily, only what their candidate paths use; edges
+// found invalid are removed, and new samples repopulate freed space.
+// Sampling is seeded per planner, so the same calls give the same paths.
+// Thread safety: none; one planner per thread. Units: metres, radians, world frame.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "surface_nbv/common.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+class CollisionMap;
+
+struct PathPlannerConfig {
+  double collision_radius = 1.0;      // paper's UAV radius [m]
+  double validity_resolution = 0.0;   // motion-check step [m]; 0 = half the collision cell
+  double time_budget = 0.5;           // wall-time per plan() [s]; 0 gives kTimeout at once
+  int iteration_budget = 0;           // roadmap samples per plan(); 0 = bounded by time only
+  unsigned int seed = 1;              // sampler seed
+  bool stop_at_first_solution = true; // false: LazyPRM* improves the path until the budget ends
+  bool simplify = true;               // greedy collision-checked shortcutting of the path
+
+  // Names the first bad key, e.g. "collision_radius expected > 0".
+  Status validate() const;
+};
+
+enum class PathStatus {
+  kExactSolution,        // a path from start to goal
+  kApproximateSolution,  // not produced by LazyPRM*; kept for OMPL parity
+  kTimeout,              // the time budget ended with no path
+  kInvalidStart,         // start out of bounds or in collision
+  kInvalidGoal,          // goal out of bounds or in collision
+  kNoSolution,           // the iteration budget ended with no path
+  kInvalidInput,         // no map, bad config or bounds, non-finite pose
+};
+
+const char* toString(PathStatus status);
+
+inline bool hasPath(PathStatus status) {
+  return status == PathStatus::kExactSolution || status == PathStatus::kApproximateSolution;
+}
+
+struct PathResult {
+  PathStatus status = PathStatus::kInvalidInput;
+  std::vector<Eigen::Vector4d> path;  // (x, y, z, yaw); empty unless hasPath(status)
+  double length = 0.0;                // translational length [m]
+  double seconds = 0.0;               // wall time of the call
+};
+
+class PathPlanner {
+ public:
+  // `config` must validate(); the constructor trusts it.
+  explicit PathPlanner(const PathPlannerConfig& config = PathPlannerConfig());
+  ~PathPlanner();
+  PathPlanner(const PathPlanner&) = delete;
+  PathPlanner& operator=(const PathPlanner&) = delete;
+
+  // The map to plan in (not owned; must outlive its use) and the sampling
+  // bounds. The same bounds keep the roadmap (as mapChanged()); new bounds
+  // start a new one. Error on a null map or an empty box.
+  Status setMap(const CollisionMap* map, const AlignedBox& bounds);
+  // Call after the CollisionMap was updated: roadmap validity is re-checked lazily.
+  void mapChanged();
+  // Drops the roadmap; the next plan() starts from scratch with the seed.
+  void clear();
+
+  PathResult plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal);
+  // Length of plan(start, goal) with yaw 0, or +infinity if it has no path.
+  double pathLength(const Eigen::Vector3d& start, const Eigen::Vector3d& goal);
+
+  // Roadmap vertices currently held (for tests and statistics).
+  size_t roadmapVertices() const;
+
+ private:
+  struct Impl;
+  PathPlannerConfig config_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace surface_nbv

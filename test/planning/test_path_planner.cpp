@@ -1,0 +1,257 @@
+#include "surface_nbv/planning/path_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <tuple>
+#include <vector>
+
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/tsdf_map.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+// 12 x 12 x 5 m of known free space, 0.25 m voxels, with a wall across x = 0
+// (voxel columns x in [-0.25, 0.25)) that leaves a gap for y >= 1 m when open.
+class WallWorld {
+ public:
+  explicit WallWorld(bool gap) : map_(config()) {
+    const Eigen::Vector3i& g = map_.gridVoxels();
+    for (int z = 0; z < g.z(); ++z)
+      for (int y = 0; y < g.y(); ++y)
+        for (int x = 0; x < g.x(); ++x) set(Eigen::Vector3i(x, y, z), inWall(Eigen::Vector3i(x, y, z), gap));
+    CollisionConfig cc;
+    cc.min_cell_size = 0.0;
+    collision_ = std::make_unique<CollisionMap>(map_, cc);
+  }
+  // Fills the gap and updates the collision map.
+  void closeGap() {
+    const Eigen::Vector3i& g = map_.gridVoxels();
+    for (int z = 0; z < g.z(); ++z)
+      for (int y = 0; y < g.y(); ++y)
+        for (int x = 0; x < g.x(); ++x)
+          if (inWall(Eigen::Vector3i(x, y, z), false)) set(Eigen::Vector3i(x, y, z), true);
+    collision_->update(map_);
+  }
+  const CollisionMap& collision() const { return *collision_; }
+  AlignedBox bounds() const { return config().bounds; }
+
+ private:
+  static TsdfConfig config() {
+    TsdfConfig c;
+    c.voxel_size = 0.25;
+    c.bounds = AlignedBox(Eigen::Vector3d(-6, -6, 0), Eigen::Vector3d(6, 6, 5));
+    return c;
+  }
+  bool inWall(const Eigen::Vector3i& v, bool gap) const {
+    const Eigen::Vector3d p = map_.voxelCenter(v);
+    return std::abs(p.x()) < 0.25 && !(gap && p.y() >= 1.0);
+  }
+  void set(const Eigen::Vector3i& v, bool occupied) {
+    TsdfVoxel* voxel = map_.allocateVoxel(v);
+    voxel->w = 1.0f;
+    voxel->phi = occupied ? -0.1f : 0.2f;
+    map_.mutableBlock(TsdfMap::blockOfVoxel(v))->change_stamp = map_.beginChange();
+  }
+
+  TsdfMap map_;
+  std::unique_ptr<CollisionMap> collision_;
+};
+
+PathPlannerConfig seededConfig() {
+  PathPlannerConfig c;
+  c.time_budget = 10.0;
+  c.iteration_budget = 3000;
+  c.seed = 7;
+  return c;
+}
+
+const Eigen::Vector4d kStart(-4.0, -3.0, 2.5, 0.0);
+const Eigen::Vector4d kGoal(4.0, -3.0, 2.5, 1.5);
+
+void expectCollisionFree(const CollisionMap& map, const PathResult& r, double radius) {
+  ASSERT_GE(r.path.size(), 2u);
+  double length = 0.0;
+  for (size_t k = 0; k + 1 < r.path.size(); ++k) {
+    const Eigen::Vector3d a = r.path[k].head<3>(), b = r.path[k + 1].head<3>();
+    const double d = (b - a).norm();
+    length += d;
+    const int steps = static_cast<int>(std::ceil(d / 0.1));
+    for (int i = 0; i <= steps; ++i) {
+      const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / steps);
+      EXPECT_TRUE(map.isFree(p, radius)) << "segment " << k << " at " << p.transpose();
+    }
+  }
+  EXPECT_NEAR(length, r.length, 1e-9);
+}
+
+}  // namespace
+
+TEST(PathPlannerConfig, ValidateNamesTheKey) {
+  EXPECT_TRUE(PathPlannerConfig().validate());
+  PathPlannerConfig c;
+  c.collision_radius = 0.0;
+  EXPECT_EQ(c.validate().message(), "collision_radius expected > 0");
+  c = PathPlannerConfig();
+  c.iteration_budget = -1;
+  EXPECT_EQ(c.validate().message(), "iteration_budget expected >= 0");
+  c = PathPlannerConfig();
+  c.time_budget = -1.0;
+  EXPECT_FALSE(c.validate());
+}
+
+class GapTest : public ::testing::TestWithParam<std::tuple<unsigned int, bool>> {};
+
+TEST_P(GapTest, PathGoesThroughTheGapAndIsCollisionFree) {
+  const WallWorld world(true);
+  PathPlannerConfig c = seededConfig();
+  c.seed = std::get<0>(GetParam());
+  c.stop_at_first_solution = std::get<1>(GetParam());
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult r = planner.plan(kStart, kGoal);
+  ASSERT_EQ(r.status, PathStatus::kExactSolution) << toString(r.status);
+  expectCollisionFree(world.collision(), r, 1.0);
+  EXPECT_TRUE(r.path.front().isApprox(kStart));
+  EXPECT_TRUE(r.path.back().head<3>().isApprox(kGoal.head<3>()));
+  EXPECT_NEAR(r.path.back()[3], kGoal[3], 1e-9);
+  // Yaw is monotone from start to goal here (turn of +1.5 rad).
+  for (size_t k = 1; k < r.path.size(); ++k) EXPECT_GE(r.path[k][3], r.path[k - 1][3]);
+  bool crossed = false;
+  for (size_t k = 0; k + 1 < r.path.size(); ++k) {
+    const Eigen::Vector3d a = r.path[k].head<3>(), b = r.path[k + 1].head<3>();
+    if ((a.x() < 0.0) != (b.x() < 0.0)) {
+      const double t = -a.x() / (b.x() - a.x());
+      EXPECT_GT((a + t * (b - a)).y(), 1.0);
+      crossed = true;
+    }
+  }
+  EXPECT_TRUE(crossed);
+  // Around the wall: longer than the straight line, but not absurdly.
+  EXPECT_GT(r.length, 8.0);
+  EXPECT_LT(r.length, 25.0);
+  std::printf("query: %.4f s, %zu waypoints, %.2f m, roadmap %zu vertices\n", r.seconds, r.path.size(), r.length,
+              planner.roadmapVertices());
+}
+
+INSTANTIATE_TEST_SUITE_P(Seeds, GapTest,
+                         ::testing::Combine(::testing::Values(1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u), ::testing::Bool()));
+
+TEST(PathPlanner, StartOrGoalInCollisionHaveTheirOwnStatus) {
+  const WallWorld world(true);
+  PathPlanner planner(seededConfig());
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  PathResult r = planner.plan(Eigen::Vector4d(0.0, -3.0, 2.5, 0.0), kGoal);
+  EXPECT_EQ(r.status, PathStatus::kInvalidStart);
+  EXPECT_TRUE(r.path.empty());
+  r = planner.plan(Eigen::Vector4d(-0.7, -3.0, 2.5, 0.0), kGoal);  // 0.45 m from the wall: within 1 m
+  EXPECT_EQ(r.status, PathStatus::kInvalidStart);
+  r = planner.plan(kStart, Eigen::Vector4d(0.0, -3.0, 2.5, 0.0));
+  EXPECT_EQ(r.status, PathStatus::kInvalidGoal);
+  EXPECT_TRUE(r.path.empty());
+  r = planner.plan(Eigen::Vector4d(-4.0, -3.0, 20.0, 0.0), kGoal);  // out of bounds
+  EXPECT_EQ(r.status, PathStatus::kInvalidStart);
+  r = planner.plan(Eigen::Vector4d(NAN, 0.0, 2.0, 0.0), kGoal);
+  EXPECT_EQ(r.status, PathStatus::kInvalidInput);
+}
+
+TEST(PathPlanner, NoMapIsInvalidInput) {
+  PathPlanner planner;
+  EXPECT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kInvalidInput);
+  EXPECT_FALSE(planner.setMap(nullptr, AlignedBox(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones())));
+  const WallWorld world(true);
+  EXPECT_FALSE(planner.setMap(&world.collision(), AlignedBox()));
+}
+
+TEST(PathPlanner, ClosedWallIsNotASuccess) {
+  const WallWorld world(false);
+  PathPlannerConfig c = seededConfig();
+  c.iteration_budget = 1500;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult r = planner.plan(kStart, kGoal);
+  EXPECT_EQ(r.status, PathStatus::kNoSolution) << toString(r.status);
+  EXPECT_TRUE(r.path.empty());
+  EXPECT_TRUE(std::isinf(planner.pathLength(kStart.head<3>(), kGoal.head<3>())));
+}
+
+TEST(PathPlanner, ZeroTimeBudgetTimesOut) {
+  const WallWorld world(true);
+  PathPlannerConfig c;
+  c.time_budget = 0.0;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult r = planner.plan(kStart, kGoal);
+  EXPECT_EQ(r.status, PathStatus::kTimeout);
+  EXPECT_TRUE(r.path.empty());
+  EXPECT_LT(r.seconds, 0.5);
+}
+
+TEST(PathPlanner, TinyBudgetsGiveAConsistentAnswer) {
+  const WallWorld world(true);
+  for (int budget : {1, 2, 5, 20}) {
+    PathPlannerConfig c = seededConfig();
+    c.iteration_budget = budget;
+    PathPlanner planner(c);
+    ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+    const PathResult r = planner.plan(kStart, kGoal);
+    EXPECT_EQ(hasPath(r.status), !r.path.empty()) << budget;
+    if (hasPath(r.status)) expectCollisionFree(world.collision(), r, 1.0);
+  }
+  PathPlannerConfig c;
+  c.time_budget = 1e-4;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult r = planner.plan(kStart, kGoal);
+  EXPECT_EQ(hasPath(r.status), !r.path.empty());
+}
+
+TEST(PathPlanner, RepeatedClearAndPlanRepeatExactly) {
+  const WallWorld world(true);
+  PathPlanner planner(seededConfig());
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult first = planner.plan(kStart, kGoal);
+  ASSERT_EQ(first.status, PathStatus::kExactSolution);
+  for (int i = 0; i < 4; ++i) {
+    planner.clear();
+    EXPECT_EQ(planner.roadmapVertices(), 0u);
+    const PathResult r = planner.plan(kStart, kGoal);
+    ASSERT_EQ(r.status, PathStatus::kExactSolution);
+    EXPECT_EQ(r.path, first.path);
+  }
+}
+
+TEST(PathPlanner, SameSeedSamePath) {
+  const WallWorld world(true);
+  PathPlanner a(seededConfig()), b(seededConfig());
+  ASSERT_TRUE(a.setMap(&world.collision(), world.bounds()));
+  ASSERT_TRUE(b.setMap(&world.collision(), world.bounds()));
+  const PathResult ra = a.plan(kStart, kGoal), rb = b.plan(kStart, kGoal);
+  ASSERT_EQ(ra.status, PathStatus::kExactSolution);
+  EXPECT_EQ(ra.path, rb.path);
+  EXPECT_EQ(ra.length, rb.length);
+}
+
+TEST(PathPlanner, RoadmapPersistsAndMapChangesAreRechecked) {
+  WallWorld world(true);
+  PathPlanner planner(seededConfig());
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult first = planner.plan(kStart, kGoal);
+  ASSERT_EQ(first.status, PathStatus::kExactSolution);
+  const size_t vertices = planner.roadmapVertices();
+  EXPECT_GT(vertices, 2u);
+  // A second query reuses the roadmap.
+  const PathResult second = planner.plan(Eigen::Vector4d(-4.0, 3.0, 2.5, 0.0), Eigen::Vector4d(4.0, 3.0, 2.5, 0.0));
+  ASSERT_EQ(second.status, PathStatus::kExactSolution);
+  EXPECT_GE(planner.roadmapVertices(), vertices);
+  std::printf("second query on the kept roadmap: %.4f s\n", second.seconds);
+  // Closing the gap invalidates the edges through it.
+  world.closeGap();
+  planner.mapChanged();
+  const PathResult closed = planner.plan(kStart, kGoal);
+  EXPECT_FALSE(hasPath(closed.status)) << toString(closed.status);
+  EXPECT_TRUE(closed.path.empty());
+}
