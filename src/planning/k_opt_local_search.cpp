@@ -143,7 +143,7 @@ bool KOptLocalSearch::orOptFrom(int t1) {
 }
 
 bool KOptLocalSearch::applyMove(const int* removed, const int* added, int k, double gain) {
-  // Cut r (after sorting) is the tour edge between positions cut[r] and cut[r] + 1;
+  // Cut r (after sorting) is the tour edge between positions cut[r] and cut[r] + 1,
   // segment r runs from cut[r - 1] + 1 to cut[r]. Endpoint 2r = start of
   // segment r, 2r + 1 = its end.
   int cut[5], order[5];

@@ -5,7 +5,7 @@
 // neighbours here). A viewpoint with no neighbour widens its own radius by
 // d_nu_step up to d_nu_max and links to every viewpoint within the first
 // radius that finds one. Clusters are the connected components (q_i joins u
-// if some q_j in u is its neighbour), numbered by their smallest viewpoint;
+// if some q_j in u is its neighbour), numbered by their smallest viewpoint,
 // g(u) = |union of C_q over u| / |C|. Runs on `threads` threads, same result
 // for any count.
 #pragma once

@@ -3,7 +3,7 @@
 // every voxel of every block slot plus one voxel on each side; voxels outside
 // the map's voxel grid read kOutside (neither unknown, occupied nor free), so
 // neighbour reads and ray walks between in-grid voxels need no bounds check.
-// Thread safety: refreshBlock() on distinct blocks may run concurrently;
+// Thread safety: refreshBlock() on distinct blocks may run concurrently,
 // reads are safe while no refresh runs.
 #pragma once
 
