@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/sim_params.h"
 
 namespace surface_nbv {
@@ -41,12 +42,7 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   if (Status st = reader.status(); !st) return st;
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
-  shared.get("voxel_size", &c->map.voxel_size);
-  double w_th = c->map.w_th;
-  shared.get("w_th", &w_th);
-  c->map.w_th = static_cast<float>(w_th);
-  shared.get("bounds_min", &c->map.bounds.min);
-  shared.get("bounds_max", &c->map.bounds.max);
+  readSharedMapConfig(&shared, &c->map);
   shared.get("delta_pose", &s.delta_pose);
   shared.get("d_nu", &s.d_nu);
   shared.get("d_nu_max", &s.d_nu_max);

@@ -21,6 +21,15 @@ Status MapperConfig::validate() const {
   return Status::Ok();
 }
 
+void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
+  shared->get("voxel_size", &map->voxel_size);
+  double w_th = map->w_th;
+  shared->get("w_th", &w_th);
+  map->w_th = static_cast<float>(w_th);
+  shared->get("bounds_min", &map->bounds.min);
+  shared->get("bounds_max", &map->bounds.max);
+}
+
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);
@@ -49,12 +58,7 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   }
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
-  shared.get("voxel_size", &c->tsdf.voxel_size);
-  double w_th = c->tsdf.w_th;
-  shared.get("w_th", &w_th);
-  c->tsdf.w_th = static_cast<float>(w_th);
-  shared.get("bounds_min", &c->tsdf.bounds.min);
-  shared.get("bounds_max", &c->tsdf.bounds.max);
+  readSharedMapConfig(&shared, &c->tsdf);
   readCameraConfig(&shared, &c->camera);
   shared.checkUnknown("camera");
   if (Status s = shared.status(); !s) return s;

@@ -28,6 +28,9 @@ struct MapperConfig {
   Status validate() const;
 };
 
+// Reads voxel_size, w_th, bounds_min and bounds_max (the map every node shares).
+void readSharedMapConfig(ParamReader* shared, TsdfConfig* map);
+
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* config);
 
 }  // namespace surface_nbv
