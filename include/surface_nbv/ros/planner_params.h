@@ -1,0 +1,39 @@
+// Parameters of nbv_planner. From the shared namespace: voxel_size, w_th,
+// bounds_min, bounds_max (the mirrored map) and lambda_tc, lambda_ic (eq. 5),
+// one copy for every node; the rest are the node's own (~). Unknown private
+// keys are refused.
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/planning/cluster_graph.h"
+#include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/ros/param_reader.h"
+
+namespace surface_nbv {
+
+struct PlannerNodeConfig {
+  std::string shared_namespace = "/nbv";
+  TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
+  ClusterGraphConfig graph;       // lambda_tc, lambda_ic
+  PathPlannerConfig path;         // collision_radius, time_budget, seed of the PRM
+  CollisionConfig collision;
+  std::string world_frame = "world";
+  double replan_rate = 1.0;       // Hz: planning ticks; a tick plans only on a new frontier (or ~replan)
+  double speed = 0.5;             // m/s: reference speed of planner/trajectory
+  double yaw_rate = 0.5;          // rad/s: reference yaw rate (turns in place are timed by it)
+  double trajectory_spacing = 0.5;  // m between trajectory points along the path
+  int max_legs = 3;               // tour configurations chained into one trajectory
+  bool start_running = false;     // true: RUNNING from the start, else waits for ~start
+  std::string snapshot_service = "tsdf_mapper/request_snapshot";
+  double stats_period = 1.0;
+
+  // Names the first bad key, e.g. "speed expected in (0, 20] m/s".
+  Status validate() const;
+};
+
+Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* config);
+
+}  // namespace surface_nbv

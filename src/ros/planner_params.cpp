@@ -1,0 +1,66 @@
+#include "surface_nbv/ros/planner_params.h"
+
+#include <cmath>
+
+#include "surface_nbv/ros/mapper_params.h"
+
+namespace surface_nbv {
+
+Status PlannerNodeConfig::validate() const {
+  if (Status s = map.validate(); !s) return s;
+  if (Status s = graph.validate(); !s) return s;
+  if (Status s = path.validate(); !s) return s;
+  if (Status s = collision.validate(); !s) return s;
+  if (path.collision_radius >= collision.max_distance) {
+    return Status::Error("collision_radius expected < collision_max_distance");
+  }
+  if (world_frame.empty()) return Status::Error("world_frame expected a frame name");
+  if (!std::isfinite(replan_rate) || replan_rate <= 0.0 || replan_rate > 50.0) {
+    return Status::Error("replan_rate expected in (0, 50] Hz");
+  }
+  if (!std::isfinite(speed) || speed <= 0.0 || speed > 20.0) return Status::Error("speed expected in (0, 20] m/s");
+  if (!std::isfinite(yaw_rate) || yaw_rate <= 0.0 || yaw_rate > 10.0) {
+    return Status::Error("yaw_rate expected in (0, 10] rad/s");
+  }
+  if (!std::isfinite(trajectory_spacing) || trajectory_spacing <= 0.0) {
+    return Status::Error("trajectory_spacing expected > 0");
+  }
+  if (max_legs < 1) return Status::Error("max_legs expected >= 1");
+  if (snapshot_service.empty()) return Status::Error("snapshot_service expected a service name");
+  if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
+  return Status::Ok();
+}
+
+Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
+  ParamReader reader(priv);
+  reader.get("shared_namespace", &c->shared_namespace);
+  reader.get("world_frame", &c->world_frame);
+  reader.get("replan_rate", &c->replan_rate);
+  reader.get("speed", &c->speed);
+  reader.get("yaw_rate", &c->yaw_rate);
+  reader.get("trajectory_spacing", &c->trajectory_spacing);
+  reader.get("max_legs", &c->max_legs);
+  reader.get("start_running", &c->start_running);
+  reader.get("collision_radius", &c->path.collision_radius);
+  reader.get("time_budget", &c->path.time_budget);
+  int seed = static_cast<int>(c->path.seed);
+  reader.get("seed", &seed);
+  if (seed < 0) return Status::Error(priv.getNamespace() + "/seed expected >= 0");
+  c->path.seed = static_cast<unsigned int>(seed);
+  reader.get("collision_max_distance", &c->collision.max_distance);
+  reader.get("collision_cell_size", &c->collision.min_cell_size);
+  reader.get("snapshot_service", &c->snapshot_service);
+  reader.get("stats_period", &c->stats_period);
+  reader.checkUnknown();
+  if (Status st = reader.status(); !st) return st;
+
+  ParamReader shared(ros::NodeHandle(c->shared_namespace));
+  readSharedMapConfig(&shared, &c->map);
+  shared.get("lambda_tc", &c->graph.lambda_tc);
+  shared.get("lambda_ic", &c->graph.lambda_ic);
+  if (Status st = shared.status(); !st) return st;
+  if (Status st = c->validate(); !st) return Status::Error(priv.getNamespace() + "/" + st.message());
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv

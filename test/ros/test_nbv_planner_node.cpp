@@ -1,0 +1,217 @@
+// nbv_planner on a hand-made world: a known free box (12 x 12 x 5 m) split by
+// a wall at x = 0 with a gap at y >= 1.5 m, a frontier of 3 clusters on both
+// sides of the wall and a UAV hovering at (-4, -3, 2.5). The trajectory must
+// stay inside the bounds and >= 1 m from obstacles (checked on a CollisionMap
+// of the same map), with increasing times; ~stop / ~start / ~replan answer
+// success in any state and ~stop sends a hold trajectory at the UAV's pose.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+#include <std_srvs/Trigger.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+
+#include "surface_nbv/SurfaceFrontier.h"
+#include "surface_nbv/TsdfUpdate.h"
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/map_update.h"
+#include "surface_nbv/ros/map_conversions.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+TsdfConfig mapConfig() {  // as nbv_planner.test
+  TsdfConfig c;
+  c.voxel_size = 0.25;
+  c.w_th = 0.3f;
+  c.bounds = AlignedBox(Eigen::Vector3d(-6, -6, 0), Eigen::Vector3d(6, 6, 5));
+  return c;
+}
+
+void buildWorld(TsdfMap* map) {
+  const Eigen::Vector3i& g = map->gridVoxels();
+  for (int z = 0; z < g.z(); ++z)
+    for (int y = 0; y < g.y(); ++y)
+      for (int x = 0; x < g.x(); ++x) {
+        const Eigen::Vector3i v(x, y, z);
+        const Eigen::Vector3d p = map->voxelCenter(v);
+        const bool wall = std::abs(p.x()) < 0.25 && p.y() < 1.5;
+        TsdfVoxel* voxel = map->allocateVoxel(v);
+        voxel->w = 1.0f;
+        voxel->phi = wall ? -0.1f : 0.2f;
+        map->mutableBlock(TsdfMap::blockOfVoxel(v))->change_stamp = map->beginChange();
+      }
+}
+
+FrontierViewpoint viewpoint(double x, double y, double z, double yaw, std::vector<uint32_t> visible) {
+  FrontierViewpoint v;
+  v.pose.position.x = x;
+  v.pose.position.y = y;
+  v.pose.position.z = z;
+  v.pose.orientation.w = std::cos(0.5 * yaw);
+  v.pose.orientation.z = std::sin(0.5 * yaw);
+  v.visible_ises = visible;
+  return v;
+}
+
+SurfaceFrontier makeFrontier() {
+  SurfaceFrontier f;
+  f.header.frame_id = "world";
+  f.header.stamp = ros::Time::now();
+  for (double y : {-3.0, -1.0, 1.0}) {
+    geometry_msgs::Point p;
+    p.x = -0.375;
+    p.y = y;
+    p.z = 2.5;
+    f.ises.push_back(p);
+    p.x = 0.375;
+    f.ises.push_back(p);
+  }
+  f.viewpoints = {viewpoint(-2.5, -2.0, 2.5, 0.0, {0, 2}), viewpoint(-2.5, 0.0, 2.5, 0.0, {2, 4}),
+                  viewpoint(2.5, -3.0, 2.5, M_PI, {1}), viewpoint(2.5, -1.0, 2.5, M_PI, {3}),
+                  viewpoint(3.0, 3.5, 2.5, -M_PI / 2, {5})};
+  FrontierCluster a, b, c;
+  a.viewpoints = {0, 1};
+  a.gain = 0.5;
+  b.viewpoints = {2, 3};
+  b.gain = 1.0 / 3.0;
+  c.viewpoints = {4};
+  c.gain = 1.0 / 6.0;
+  f.clusters = {a, b, c};
+  f.num_ises = static_cast<uint32_t>(f.ises.size());
+  return f;
+}
+
+bool call(const std::string& name, std::string* message) {
+  std_srvs::Trigger t;
+  if (!ros::service::call(name, t)) return false;
+  *message = t.response.message;
+  return t.response.success;
+}
+
+}  // namespace
+
+TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
+  ros::NodeHandle nh;
+  const TsdfConfig config = mapConfig();
+  TsdfMap map(config);
+  buildWorld(&map);
+  const CollisionMap collision(map, CollisionConfig());
+  const Eigen::Vector3d uav(-4.0, -3.0, 2.5);
+  ASSERT_TRUE(collision.isFree(uav, 1.2));
+
+  std::mutex mutex;
+  trajectory_msgs::MultiDOFJointTrajectory last_plan, last_hold;
+  size_t plans = 0, holds = 0;
+  ros::Subscriber trajectory_sub = nh.subscribe<trajectory_msgs::MultiDOFJointTrajectory>(
+      "planner/trajectory", 10, [&](const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& m) {
+        std::lock_guard<std::mutex> l(mutex);
+        if (m->points.size() > 1) {
+          last_plan = *m;
+          ++plans;
+        } else {
+          last_hold = *m;
+          ++holds;
+        }
+      });
+  MapUpdate update;
+  ASSERT_TRUE(makeUpdate(map, 0, 1, true, &update));
+  std_msgs::Header header;
+  header.frame_id = "world";
+  header.stamp = ros::Time::now();
+  TsdfUpdate update_msg;
+  toUpdateMsg(update, header, &update_msg);
+  ros::Publisher update_pub = nh.advertise<TsdfUpdate>("tsdf/update", 1, true);
+  ros::Publisher frontier_pub = nh.advertise<SurfaceFrontier>("surface/frontier", 1, true);
+  ros::Publisher odometry_pub = nh.advertise<nav_msgs::Odometry>("odometry", 10);
+  ros::ServiceServer snapshot = nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
+      "tsdf_mapper/request_snapshot", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+        update_pub.publish(update_msg);
+        res.success = true;
+        return true;
+      });
+  update_pub.publish(update_msg);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  ASSERT_TRUE(ros::service::waitForService("nbv_planner/start", ros::Duration(20.0)));
+
+  std::string message;
+  EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;   // stopped already
+  EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;  // while stopped
+  frontier_pub.publish(makeFrontier());
+  nav_msgs::Odometry odometry;
+  odometry.header.frame_id = "world";
+  odometry.child_frame_id = "base_link";
+  odometry.pose.pose.position.x = uav.x();
+  odometry.pose.pose.position.y = uav.y();
+  odometry.pose.pose.position.z = uav.z();
+  odometry.pose.pose.orientation.w = 1.0;
+  auto publishOdometry = [&] {
+    odometry.header.stamp = ros::Time::now();
+    odometry_pub.publish(odometry);
+  };
+  for (int i = 0; i < 10; ++i) {
+    publishOdometry();
+    ros::WallDuration(0.05).sleep();
+  }
+  EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+  EXPECT_TRUE(call("nbv_planner/start", &message)) << message;  // while running
+  for (int i = 0; i < 200; ++i) {
+    publishOdometry();
+    ros::WallDuration(0.05).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    if (plans > 0) break;
+  }
+  {
+    std::lock_guard<std::mutex> l(mutex);
+    ASSERT_GT(plans, 0u) << "no planner/trajectory";
+    EXPECT_EQ(last_plan.header.frame_id, "world");
+    EXPECT_FALSE(last_plan.header.stamp.isZero());
+    const auto& first = last_plan.points.front().transforms.at(0).translation;
+    EXPECT_NEAR((Eigen::Vector3d(first.x, first.y, first.z) - uav).norm(), 0.0, 1e-6);
+    double previous = -1.0;
+    for (const auto& point : last_plan.points) {
+      ASSERT_EQ(point.transforms.size(), 1u);
+      const auto& t = point.transforms[0].translation;
+      const Eigen::Vector3d p(t.x, t.y, t.z);
+      EXPECT_TRUE(config.bounds.contains(p)) << p.transpose();
+      EXPECT_TRUE(collision.isFree(p, 1.0)) << p.transpose() << " is " << collision.distance(p) << " m from obstacles";
+      EXPECT_GT(point.time_from_start.toSec(), previous);
+      previous = point.time_from_start.toSec();
+    }
+    const auto& last = last_plan.points.back().transforms.at(0).translation;
+    double to_viewpoint = 1e9;  // the trajectory ends at a configuration of the tour
+    for (const FrontierViewpoint& v : makeFrontier().viewpoints) {
+      to_viewpoint = std::min(to_viewpoint, std::hypot(last.x - v.pose.position.x, last.y - v.pose.position.y,
+                                                       last.z - v.pose.position.z));
+    }
+    EXPECT_LT(to_viewpoint, 1e-6);
+    std::printf("trajectory: %zu points, %.1f s, ends at (%.2f, %.2f, %.2f)\n", last_plan.points.size(), previous,
+                last.x, last.y, last.z);
+  }
+  EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;  // while running
+  EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;
+  EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;
+  for (int i = 0; i < 40; ++i) {
+    ros::WallDuration(0.05).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    if (holds > 0) break;
+  }
+  std::lock_guard<std::mutex> l(mutex);
+  ASSERT_GT(holds, 0u) << "~stop sent no hold trajectory";
+  ASSERT_EQ(last_hold.points.size(), 1u);
+  const auto& hold = last_hold.points[0].transforms.at(0).translation;
+  EXPECT_NEAR((Eigen::Vector3d(hold.x, hold.y, hold.z) - uav).norm(), 0.0, 1e-6);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_nbv_planner_node");
+  return RUN_ALL_TESTS();
+}
