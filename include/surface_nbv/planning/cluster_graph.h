@@ -4,13 +4,13 @@
 // Nodes: node 0 is the UAV's current configuration, node u > 0 is cluster u - 1
 // of the Frontier. Edge u -> v (v > 0, u != v) carries the 6-tuple
 // (tau_kl, tau_lm, g(v), d(tau_kl), d(tau_lm), f_uv):
-//   q_k    the exit configuration of u (see below);
+//   q_k    the exit configuration of u (see below),
 //   q_l    the viewpoint of v closest to q_k by path length (ties: lowest
-//          position in v's viewpoint list);
+//          position in v's viewpoint list),
 //   tau_lm the shortest Hamiltonian path through v's viewpoints starting at q_l
 //          (end q_m free): exact (Held-Karp over subsets) for <= kExactClusterSize
-//          viewpoints, nearest neighbour + 2-opt otherwise;
-//   f_uv   = g(v) exp(-lambda_tc d_kl - lambda_ic d_lm)   (eq. 5);
+//          viewpoints, nearest neighbour + 2-opt otherwise,
+//   f_uv   = g(v) exp(-lambda_tc d_kl - lambda_ic d_lm)   (eq. 5),
 //   cost   = utilityToCost(...) = -log f_uv + log g_max >= 0, the TSP arc cost.
 //
 // Simplification (documented, deliberate): in a pairwise graph the way u was
