@@ -22,7 +22,7 @@
 // nominal q_k; TourPlan::flight_length measures the real flight.
 //
 // Distances come from an oracle (path length, +inf when no path); 2-opt assumes
-// it is symmetric. An edge is reachable when d_kl and d_lm are both finite;
+// it is symmetric. An edge is reachable when d_kl and d_lm are both finite,
 // an unreachable edge, or one into a cluster of gain <= 0, costs
 // CostMatrix::kUnreachable and has utility 0. Arcs into node 0 cost 0 (open path).
 #pragma once
