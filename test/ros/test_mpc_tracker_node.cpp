@@ -40,7 +40,7 @@ TEST(MpcTrackerNode, FollowsATrajectoryWithConsistentClockOdometryAndTf) {
   std::mutex mutex;
   nav_msgs::Odometry odom;
   int odoms = 0;
-  bool stamps_monotone = true, stamps_behind_clock = true;
+  bool stamps_monotone = true;
   ros::Time last_stamp, last_clock;
   surface_nbv::NodeStats stats;
   ros::Subscriber clock_sub = nh.subscribe<rosgraph_msgs::Clock>("/clock", 100, [&](const rosgraph_msgs::ClockConstPtr& c) {
