@@ -11,25 +11,18 @@
 #include <memory>
 
 #include "surface_nbv/eval/evaluator.h"
-#include "surface_nbv/sim/scene_source.h"
+#include "bench_scenes.h"
 
 using namespace surface_nbv;
 
 namespace {
 
-std::string powerplantPath() { return std::string(NBV_SOURCE_DIR) + "/../shared/scenes/powerplant.dae"; }
 
 // nullptr when the scene cannot be loaded (message printed once).
 const TriangleMesh* sceneMesh(const std::string& name) {
   static std::map<std::string, std::unique_ptr<TriangleMesh>> cache;
   if (auto it = cache.find(name); it != cache.end()) return it->second.get();
-  SceneConfig config;
-  config.scene = name;
-  if (name == "powerplant") {
-    config.scene = powerplantPath();
-    config.transform.scale = 0.656;
-    config.transform.crop.max.z() = 15.0;
-  }
+  const SceneConfig config = benchSceneConfig(name);
   auto mesh = std::make_unique<TriangleMesh>();
   if (Status s = loadScene(config, mesh.get()); !s) {
     std::printf("scene %s skipped: %s\n", name.c_str(), s.message().c_str());

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "surface_nbv/sim/depth_renderer.h"
-#include "surface_nbv/sim/scene_source.h"
+#include "bench_scenes.h"
 #include "surface_nbv/sim/scripted_flight.h"
 
 using namespace surface_nbv;
@@ -23,20 +23,13 @@ struct LoadedScene {
   std::vector<Transform> dense_poses;  // those that see it in at least 40 % of the pixels
 };
 
-std::string powerplantPath() { return std::string(NBV_SOURCE_DIR) + "/../shared/scenes/powerplant.dae"; }
 
 const LoadedScene* getScene(const std::string& name) {
   static std::map<std::string, std::unique_ptr<LoadedScene>> cache;
   auto it = cache.find(name);
   if (it != cache.end()) return it->second.get();
   auto loaded = std::make_unique<LoadedScene>();
-  SceneConfig config;
-  config.scene = name;
-  if (name == "powerplant") {
-    config.scene = powerplantPath();
-    config.transform.scale = 0.656;
-    config.transform.crop.max.z() = 15.0;
-  }
+  const SceneConfig config = benchSceneConfig(name);
   if (!loadScene(config, &loaded->mesh) || !RaycastScene::create(loaded->mesh, &loaded->scene)) {
     cache[name] = nullptr;
     return nullptr;

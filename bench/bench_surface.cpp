@@ -26,6 +26,7 @@
 #include <memory>
 #include <string>
 
+#include "bench_scenes.h"
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/map/tsdf_integrator.h"
@@ -86,10 +87,7 @@ const Survey& survey(int setting) {
   Survey& s = *slot;
   const Setting& set = kSettings[setting];
   const auto t0 = std::chrono::steady_clock::now();
-  SceneConfig scene_config;
-  scene_config.scene = std::string(NBV_SOURCE_DIR) + "/../shared/scenes/powerplant.dae";
-  scene_config.transform.scale = 0.656;
-  scene_config.transform.crop.max.z() = 15.0;
+  const SceneConfig scene_config = benchSceneConfig("powerplant");
   TriangleMesh mesh;
   std::unique_ptr<RaycastScene> scene;
   if (Status st = loadScene(scene_config, &mesh); !st) fail(st.message());

@@ -3,16 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tf2_eigen/tf2_eigen.h>
+
 namespace surface_nbv {
 namespace {
-
-geometry_msgs::Point toPoint(const Eigen::Vector3d& p) {
-  geometry_msgs::Point q;
-  q.x = p.x();
-  q.y = p.y();
-  q.z = p.z();
-  return q;
-}
 
 visualization_msgs::Marker layer(const std_msgs::Header& header, const std::string& ns, int type, double scale) {
   visualization_msgs::Marker m;
@@ -44,13 +38,13 @@ void toFrontierMsg(const Frontier& frontier, const std_msgs::Header& header, sur
   msg->ises.clear();
   msg->remaining.clear();
   for (size_t i = 0; i < frontier.ises.size(); ++i) {
-    msg->ises.push_back(toPoint(frontier.ises[i].position));
+    msg->ises.push_back(tf2::toMsg(frontier.ises[i].position));
     if (frontier.ises[i].remaining) msg->remaining.push_back(static_cast<uint32_t>(i));
   }
   msg->viewpoints.clear();
   for (const Viewpoint& v : frontier.viewpoints) {
     surface_nbv::FrontierViewpoint out;
-    out.pose.position = toPoint(v.position);
+    out.pose.position = tf2::toMsg(v.position);
     out.pose.orientation.w = std::cos(0.5 * v.yaw);
     out.pose.orientation.z = std::sin(0.5 * v.yaw);
     out.visible_ises.assign(v.visible.begin(), v.visible.end());
@@ -78,16 +72,16 @@ void toFrontierMarkers(const Frontier& frontier, const std_msgs::Header& header,
   ises.color.r = 1.0f, ises.color.g = 0.8f, ises.color.b = 0.1f;
   Marker remaining = layer(header, "remaining", Marker::CUBE_LIST, voxel_size);
   remaining.color.r = 0.9f, remaining.color.g = 0.1f, remaining.color.b = 0.1f;
-  for (const Ise& ise : frontier.ises) (ise.remaining ? remaining : ises).points.push_back(toPoint(ise.position));
+  for (const Ise& ise : frontier.ises) (ise.remaining ? remaining : ises).points.push_back(tf2::toMsg(ise.position));
   Marker arrows = layer(header, "viewpoints", Marker::LINE_LIST, 0.05);
   arrows.color.r = 0.1f, arrows.color.g = 0.9f, arrows.color.b = 0.2f;
   Marker members = layer(header, "clusters", Marker::SPHERE_LIST, 0.4);
   double max_gain = 0.0;
   for (const Cluster& c : frontier.clusters) max_gain = std::max(max_gain, c.gain);
   for (const Viewpoint& v : frontier.viewpoints) {
-    arrows.points.push_back(toPoint(v.position));
-    arrows.points.push_back(toPoint(v.position + v.view_direction));
-    members.points.push_back(toPoint(v.position));
+    arrows.points.push_back(tf2::toMsg(v.position));
+    arrows.points.push_back(tf2::toMsg(Eigen::Vector3d(v.position + v.view_direction)));
+    members.points.push_back(tf2::toMsg(v.position));
     const double gain = v.cluster >= 0 && static_cast<size_t>(v.cluster) < frontier.clusters.size()
                             ? frontier.clusters[static_cast<size_t>(v.cluster)].gain
                             : 0.0;

@@ -1,18 +1,8 @@
 #include "surface_nbv/ros/map_conversions.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+
 namespace surface_nbv {
-
-namespace {
-
-geometry_msgs::Point toPointMsg(const Eigen::Vector3d& p) {
-  geometry_msgs::Point msg;
-  msg.x = p.x();
-  msg.y = p.y();
-  msg.z = p.z();
-  return msg;
-}
-
-}  // namespace
 
 void toUpdateMsg(const MapUpdate& update, const std_msgs::Header& header, surface_nbv::TsdfUpdate* msg) {
   msg->header = header;
@@ -20,8 +10,8 @@ void toUpdateMsg(const MapUpdate& update, const std_msgs::Header& header, surfac
   msg->snapshot = update.snapshot;
   msg->voxel_size = update.voxel_size;
   msg->w_th = update.w_th;
-  msg->bounds_min = toPointMsg(update.bounds.min);
-  msg->bounds_max = toPointMsg(update.bounds.max);
+  msg->bounds_min = tf2::toMsg(update.bounds.min);
+  msg->bounds_max = tf2::toMsg(update.bounds.max);
   msg->blocks.resize(update.blocks.size());
   for (size_t i = 0; i < update.blocks.size(); ++i) {
     const BlockData& data = update.blocks[i];

@@ -8,9 +8,9 @@
 #include <nav_msgs/Path.h>
 #include <std_msgs/String.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
+#include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "surface_nbv/ros/map_conversions.h"
 
 namespace surface_nbv {
 namespace {
@@ -29,14 +29,6 @@ bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::i
 bool finite(const geometry_msgs::Quaternion& q) {
   return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
          q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-12;
-}
-
-geometry_msgs::Point toPoint(const Eigen::Vector4d& p) {
-  geometry_msgs::Point q;
-  q.x = p.x();
-  q.y = p.y();
-  q.z = p.z();
-  return q;
 }
 
 geometry_msgs::Quaternion yawQuaternion(double yaw) {
@@ -60,7 +52,7 @@ visualization_msgs::Marker lineStrip(const std_msgs::Header& header, const std::
   m.color.g = g;
   m.color.b = b;
   m.color.a = 1.0f;
-  for (const Eigen::Vector4d& p : points) m.points.push_back(toPoint(p));
+  for (const Eigen::Vector4d& p : points) m.points.push_back(tf2::toMsg(Eigen::Vector3d(p.head<3>())));
   return m;
 }
 
@@ -142,15 +134,13 @@ std::vector<Eigen::Vector4d> resamplePath(const std::vector<Eigen::Vector4d>& pa
 NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, const PlannerNodeConfig& config)
     : nh_(nh),
       config_(config),
-      mirror_(config.map),
-      planner_(config.path),
-      stats_(nh_, "planner/stats", "nbv_planner", config.stats_period) {
-  collision_ = std::make_unique<CollisionMap>(mirror_.map(), config_.collision);
-  if (Status s = planner_.setMap(collision_.get(), config_.map.bounds); !s) {
+      stats_(nh_, "planner/stats", "nbv_planner", config.stats_period),
+      feed_(nh_, config.map, config.collision, config.snapshot_service, "nbv_planner", &stats_),
+      planner_(config.path) {
+  if (Status s = planner_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: path planner refused the map: %s", s.message().c_str());
   }
   state_ = config_.start_running ? State::kRunning : State::kStopped;
-  update_sub_ = nh_.subscribe("tsdf/update", 20, &NbvPlannerServer::onUpdate, this);
   frontier_sub_ = nh_.subscribe("surface/frontier", 2, &NbvPlannerServer::onFrontier, this);
   odometry_sub_ = nh_.subscribe("odometry", 20, &NbvPlannerServer::onOdometry, this);
   trajectory_pub_ = nh_.advertise<trajectory_msgs::MultiDOFJointTrajectory>("planner/trajectory", 1, true);
@@ -160,31 +150,11 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
   start_srv_ = priv.advertiseService("start", &NbvPlannerServer::onStart, this);
   stop_srv_ = priv.advertiseService("stop", &NbvPlannerServer::onStop, this);
   replan_srv_ = priv.advertiseService("replan", &NbvPlannerServer::onReplan, this);
-  snapshot_client_ = nh_.serviceClient<std_srvs::Trigger>(config_.snapshot_service);
   timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / config_.replan_rate), &NbvPlannerServer::onTimer, this);
   ROS_INFO("nbv_planner: %s, replan %.1f Hz, speed %.2f m/s, collision radius %.1f m, lambda_tc %.3f, lambda_ic %.3f",
            stateName(), config_.replan_rate, config_.speed, config_.path.collision_radius, config_.graph.lambda_tc,
            config_.graph.lambda_ic);
   publishStatus("waiting");
-}
-
-void NbvPlannerServer::onUpdate(const surface_nbv::TsdfUpdateConstPtr& msg) {
-  MapUpdate update;
-  fromUpdateMsg(*msg, &update);
-  const ApplyResult result = mirror_.apply(update);
-  stats_.count(std::string("update_") + toString(result));
-  if (result == ApplyResult::kNeedSnapshot) {
-    std_srvs::Trigger trigger;
-    if (!snapshot_client_.call(trigger)) {
-      ROS_WARN_THROTTLE(5.0, "nbv_planner: missed map updates and cannot reach %s for a snapshot",
-                        config_.snapshot_service.c_str());
-    }
-    return;
-  }
-  if (result != ApplyResult::kApplied && result != ApplyResult::kIgnored) {
-    ROS_WARN_THROTTLE(5.0, "nbv_planner: tsdf/update refused (%s): %s", toString(result),
-                      mirror_.lastError().c_str());
-  }
 }
 
 void NbvPlannerServer::onFrontier(const surface_nbv::SurfaceFrontierConstPtr& msg) {
@@ -234,28 +204,14 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
 
 void NbvPlannerServer::onTimer(const ros::WallTimerEvent&) {
   if (state_ != State::kRunning || !plan_pending_) return;
-  if (!mirror_.synced() || !have_odometry_ || !have_frontier_) {
-    publishStatus(!mirror_.synced() ? "waiting for the map" : !have_odometry_ ? "waiting for odometry"
+  if (!feed_.mirror().synced() || !have_odometry_ || !have_frontier_) {
+    publishStatus(!feed_.mirror().synced() ? "waiting for the map" : !have_odometry_ ? "waiting for odometry"
                                                                                 : "waiting for a frontier");
     return;
   }
   plan_pending_ = false;
-  syncCollision();
+  if (feed_.refresh() != MapFeed::Refresh::kUnchanged) planner_.mapChanged();
   plan();
-}
-
-void NbvPlannerServer::syncCollision() {
-  const TsdfMap& map = mirror_.map();
-  if (mirror_.resets() != seen_resets_) {
-    seen_resets_ = mirror_.resets();
-    collision_->rebuild(map);
-  } else if (map.changeCounter() != collision_stamp_) {
-    collision_->update(map);
-  } else {
-    return;
-  }
-  collision_stamp_ = map.changeCounter();
-  planner_.mapChanged();
 }
 
 void NbvPlannerServer::plan() {
@@ -343,7 +299,7 @@ void NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& poi
     trajectory.points.push_back(point);
     geometry_msgs::PoseStamped pose;
     pose.header = trajectory.header;
-    pose.pose.position = toPoint(p);
+    pose.pose.position = tf2::toMsg(Eigen::Vector3d(p.head<3>()));
     pose.pose.orientation = tf.rotation;
     path.poses.push_back(pose);
   }

@@ -9,6 +9,7 @@
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/surface/surface_config.h"
+#include "surface_nbv/surface/voxel_state_grid.h"
 
 namespace surface_nbv {
 namespace test {
@@ -53,6 +54,19 @@ inline SurfaceConfig testSurfaceConfig() {
   SurfaceConfig c;
   c.threads = 1;
   return c;
+}
+
+// A VoxelStateGrid of `map` with every block slot refreshed.
+inline VoxelStateGrid gridOf(const TsdfMap& map) {
+  VoxelStateGrid grid;
+  grid.reset(map);
+  const Eigen::Vector3i& b = map.gridBlocks();
+  for (int z = 0; z < b.z(); ++z) {
+    for (int y = 0; y < b.y(); ++y) {
+      for (int x = 0; x < b.x(); ++x) grid.refreshBlock(map, Eigen::Vector3i(x, y, z));
+    }
+  }
+  return grid;
 }
 
 }  // namespace test

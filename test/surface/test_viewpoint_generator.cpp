@@ -14,16 +14,6 @@ namespace {
 
 constexpr double kDeg = M_PI / 180.0;
 
-VoxelStateGrid gridOf(const TsdfMap& map) {
-  VoxelStateGrid grid;
-  grid.reset(map);
-  const Eigen::Vector3i& b = map.gridBlocks();
-  for (int z = 0; z < b.z(); ++z)
-    for (int y = 0; y < b.y(); ++y)
-      for (int x = 0; x < b.x(); ++x) grid.refreshBlock(map, Eigen::Vector3i(x, y, z));
-  return grid;
-}
-
 void expectVectorNear(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected) {
   EXPECT_NEAR((actual - expected).norm(), 0.0, 1e-12) << actual.transpose() << " vs " << expected.transpose();
 }

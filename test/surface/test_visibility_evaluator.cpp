@@ -12,13 +12,6 @@ using namespace surface_nbv::test;
 
 namespace {
 
-VoxelStateGrid gridOf(const TsdfMap& map) {
-  VoxelStateGrid grid;
-  grid.reset(map);
-  for (const auto& b : map.blocks()) grid.refreshBlock(map, b->index);
-  return grid;
-}
-
 Ise iseAt(const TsdfMap& map, const Eigen::Vector3i& v) {
   Ise ise;
   ise.voxel = v;

@@ -13,13 +13,6 @@ using namespace surface_nbv::test;
 
 namespace {
 
-VoxelStateGrid gridOf(const TsdfMap& map) {
-  VoxelStateGrid grid;
-  grid.reset(map);
-  for (const auto& b : map.blocks()) grid.refreshBlock(map, b->index);
-  return grid;
-}
-
 Eigen::Vector3i voxelOfIndex(const VoxelStateGrid& grid, size_t index) {
   const int64_t i = static_cast<int64_t>(index);
   const int64_t z = i / grid.strideZ(), rest = i % grid.strideZ();

@@ -29,10 +29,9 @@
 #include <std_srvs/Trigger.h>
 
 #include "surface_nbv/SurfaceFrontier.h"
-#include "surface_nbv/TsdfUpdate.h"
-#include "surface_nbv/map/map_update.h"
 #include "surface_nbv/planning/cluster_graph.h"
 #include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
 #include "surface_nbv/surface/frontier.h"
@@ -57,7 +56,6 @@ class NbvPlannerServer {
   NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, const PlannerNodeConfig& config);
 
  private:
-  void onUpdate(const surface_nbv::TsdfUpdateConstPtr& msg);
   void onFrontier(const surface_nbv::SurfaceFrontierConstPtr& msg);
   void onOdometry(const nav_msgs::OdometryConstPtr& msg);
   void onTimer(const ros::WallTimerEvent&);
@@ -65,8 +63,6 @@ class NbvPlannerServer {
   bool onStop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onReplan(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
 
-  // Brings the collision map and the roadmap's validity up to the mirror.
-  void syncCollision();
   // One planning round; publishes the result or a failure status.
   void plan();
   void publishTrajectory(const std::vector<Eigen::Vector4d>& points, const ros::Time& stamp);
@@ -75,14 +71,12 @@ class NbvPlannerServer {
 
   ros::NodeHandle nh_;
   PlannerNodeConfig config_;
-  MapMirror mirror_;
-  std::unique_ptr<CollisionMap> collision_;
-  PathPlanner planner_;
   StatsReporter stats_;
-  ros::Subscriber update_sub_, frontier_sub_, odometry_sub_;
+  MapFeed feed_;
+  PathPlanner planner_;
+  ros::Subscriber frontier_sub_, odometry_sub_;
   ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;
   ros::ServiceServer start_srv_, stop_srv_, replan_srv_;
-  ros::ServiceClient snapshot_client_;
   ros::WallTimer timer_;
 
   State state_ = State::kStopped;
@@ -93,8 +87,6 @@ class NbvPlannerServer {
   Eigen::Vector4d uav_ = Eigen::Vector4d::Zero();  // x, y, z, yaw
   bool have_odometry_ = false;
   ros::Time odometry_time_;
-  uint64_t collision_stamp_ = 0;
-  uint64_t seen_resets_ = 0;
   size_t last_clusters_ = 0;
   double last_cost_ = 0.0;
   double last_ms_ = 0.0;
