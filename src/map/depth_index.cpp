@@ -14,13 +14,15 @@ constexpr float kNone = -std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, float truncation, bool clear_invalid,
-                         int threads) {
+size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, float truncation,
+                         InvalidPixelPolicy policy, int threads) {
   const int W = depth.width, H = depth.height;
   const float min_range = static_cast<float>(camera.config().min_range);
   const float max_range = static_cast<float>(camera.config().max_range);
-  const float nothing = clear_invalid ? std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
-  const float nothing_reach = clear_invalid ? max_range : kNone;
+  const bool clear_all = policy == InvalidPixelPolicy::kClearToMaxRange;
+  const bool clear_inf = policy == InvalidPixelPolicy::kClearInfinite;
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
   usable_.resize(depth.data.size());
   silhouette_.assign(depth.data.size(), 0);
   if (levels_.empty()) levels_.resize(1);
@@ -40,10 +42,11 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
       for (int u = 0; u < W; ++u) {
         const float d = in[u];
         const bool ok = d >= min_range && d <= max_range;  // false for NaN
-        out[u] = ok ? d : nothing;
+        const bool clears = !ok && (clear_all || (clear_inf && d > max_range));
+        out[u] = ok ? d : clears ? inf : nan;
         invalid[ty] += ok ? 0 : 1;
         float& m = tile_max[u / kTile];
-        m = std::max(m, ok ? d : nothing_reach);
+        m = std::max(m, ok ? d : clears ? max_range : kNone);
       }
     }
   });

@@ -5,12 +5,18 @@
 namespace surface_nbv {
 
 const char* toString(InvalidPixelPolicy policy) {
-  return policy == InvalidPixelPolicy::kIgnore ? "ignore" : "clear";
+  switch (policy) {
+    case InvalidPixelPolicy::kIgnore: return "ignore";
+    case InvalidPixelPolicy::kClearToMaxRange: return "clear";
+    case InvalidPixelPolicy::kClearInfinite: return "clear_inf";
+  }
+  return "unknown";
 }
 
 bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy) {
   if (text == "ignore") *policy = InvalidPixelPolicy::kIgnore;
   else if (text == "clear") *policy = InvalidPixelPolicy::kClearToMaxRange;
+  else if (text == "clear_inf") *policy = InvalidPixelPolicy::kClearInfinite;
   else return false;
   return true;
 }

@@ -125,8 +125,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float trunc = static_cast<float>(cfg.truncationDistance());
   const float max_range = static_cast<float>(camera.config().max_range);
   const float far = max_range + trunc;
-  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels == InvalidPixelPolicy::kClearToMaxRange,
-                                      cfg.threads);
+  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, cfg.threads);
   const std::vector<TsdfBlock*> work = candidateBlocks(camera, T_W_C, &stats);
 
   // Projective update of every voxel of the candidate blocks.
@@ -192,7 +191,8 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
   if (!T_W_S.matrix().allFinite()) return Status::Error("sensor pose is not finite");
   if (!cfg.bounds.contains(T_W_S.translation())) return Status::Error("sensor pose is outside the map bounds");
   if (!std::isfinite(max_range) || max_range <= 0.0) return Status::Error("max_range expected > 0");
-  const bool clear = cfg.invalid_pixels == InvalidPixelPolicy::kClearToMaxRange;
+  const bool clear_all = cfg.invalid_pixels == InvalidPixelPolicy::kClearToMaxRange;
+  const bool clear_inf = cfg.invalid_pixels == InvalidPixelPolicy::kClearInfinite;
   const double trunc = cfg.truncationDistance();
   const Eigen::Vector3d o = T_W_S.translation();
 
@@ -214,7 +214,11 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     bool valid = p_S.allFinite() && range > 1e-6 && range <= max_range;
     if (!valid) {
       ++stats.invalid_pixels;
-      if (!clear || !p_S.allFinite() || range <= 1e-6) continue;
+      // A point cloud has no direction for a point at infinity, so with
+      // clear_inf only finite points beyond max_range clear free space.
+      const bool finite = p_S.allFinite() && range > 1e-6;
+      const bool clears = finite && (clear_all || (clear_inf && range > max_range));
+      if (!clears) continue;
     }
     const Eigen::Vector3d dir = T_W_S.linear() * (p_S / range);
     const double end = valid ? range + trunc : max_range;
@@ -252,6 +256,39 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
   }
   stats.blocks_updated = map_->blocksChangedSince(stamp - 1).size();
   if (stats_out != nullptr) *stats_out = stats;
+  return Status::Ok();
+}
+
+Status TsdfIntegrator::markFree(const Eigen::Vector3d& center, double radius, size_t* changed) {
+  if (!center.allFinite() || !std::isfinite(radius) || radius <= 0.0 || radius > 50.0) {
+    return Status::Error("markFree expects a finite centre and a radius in (0, 50] m");
+  }
+  const TsdfConfig& cfg = map_->config();
+  const float trunc = static_cast<float>(cfg.truncationDistance());
+  const uint64_t stamp = map_->beginChange();
+  const double h = map_->voxelSize();
+  const int r = static_cast<int>(std::ceil(radius / h)) + 1;
+  Eigen::Vector3i c;
+  size_t n = 0;
+  if (!map_->voxelIndex(center, &c)) {
+    if (changed) *changed = 0;
+    return Status::Error("markFree centre is outside the map bounds");
+  }
+  for (int dz = -r; dz <= r; ++dz) {
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        const Eigen::Vector3i v = c + Eigen::Vector3i(dx, dy, dz);
+        if (!map_->voxelInBounds(v) || (map_->voxelCenter(v) - center).norm() > radius) continue;
+        TsdfVoxel* voxel = map_->allocateVoxel(v);
+        if (voxel == nullptr || voxel->w >= cfg.w_th) continue;
+        voxel->phi = trunc;
+        voxel->w = cfg.w_th;
+        map_->mutableBlock(TsdfMap::blockOfVoxel(v))->change_stamp = stamp;
+        ++n;
+      }
+    }
+  }
+  if (changed) *changed = n;
   return Status::Ok();
 }
 

@@ -7,22 +7,25 @@ namespace surface_nbv {
 namespace {
 
 constexpr double kEps = 1e-9;
-// Candidates tried for t_{2i+1} at each level of the sequential search.
-constexpr int kBreadth[6] = {0, 5, 5, 3, 2, 1};
 
 }  // namespace
 
 KOptLocalSearch::KOptLocalSearch(const CostMatrix& costs, std::vector<std::vector<int>> candidates,
-                                 std::vector<int> fixed_partner, int max_depth, int or_opt_max_segment)
+                                 std::vector<int> fixed_partner, int max_depth, int or_opt_max_segment,
+                                 std::vector<int> breadth)
     : costs_(costs),
       candidates_(std::move(candidates)),
       fixed_(std::move(fixed_partner)),
-      max_depth_(std::clamp(max_depth, 2, 5)),
+      breadth_(std::move(breadth)),
+      max_depth_(std::clamp(max_depth, 2, kMaxK)),
       or_opt_max_segment_(or_opt_max_segment),
       n_(costs.size()),
       pos_(n_),
       buffer_(n_),
-      active_(n_, 0) {}
+      active_(n_, 0) {
+  breadth_.resize(kMaxK, breadth_.empty() ? 5 : breadth_.back());
+  all_fixed_ = n_ > 0 && std::all_of(fixed_.begin(), fixed_.end(), [](int p) { return p >= 0; });
+}
 
 void KOptLocalSearch::setTour(const std::vector<int>& tour) {
   tour_ = tour;
@@ -87,9 +90,9 @@ bool KOptLocalSearch::searchLevel(int level, double gain) {
   int tried = 0;
   for (int t3 : candidates_[t2]) {
     const double g1 = gain - c(t2, t3);
-    if (g1 <= kEps) break;  // candidates are sorted by cost
+    if (g1 <= kEps) continue;
     if (t3 == succ(t2) || t3 == pred(t2) || edgeInMove(t2, t3, level - 1, false)) continue;
-    if (++tried > kBreadth[level]) break;
+    if (++tried > breadth_[level - 1]) break;
     for (int side = 0; side < 2; ++side) {
       const int t4 = side == 0 ? succ(t3) : pred(t3);
       if (fixedEdge(t3, t4) || edgeInMove(t3, t4, level, true)) continue;
@@ -98,8 +101,10 @@ bool KOptLocalSearch::searchLevel(int level, double gain) {
       const double g2 = g1 + c(t3, t4);
       const int k = level + 1;
       const double closed = g2 - c(t4, t_[0]);
-      if (closed > kEps && t4 != t_[0]) {
-        int added[10];
+      // With every node paired (the Jonker-Volgenant form) a valid move keeps
+      // each segment's direction, and such a sequential move has an odd k.
+      if (closed > kEps && t4 != t_[0] && !(all_fixed_ && k % 2 == 0)) {
+        int added[2 * kMaxK];
         for (int i = 0; i < 2 * k; ++i) added[i] = t_[(i + 1) % (2 * k)];
         if (applyMove(t_, added, k, closed)) return true;
       }
@@ -124,7 +129,7 @@ bool KOptLocalSearch::orOptFrom(int t1) {
     for (int end = 0; end < 2; ++end) {
       const int e = end == 0 ? s1 : s_last, other = end == 0 ? s_last : s1;
       for (int a : candidates_[e]) {
-        if (c(e, a) >= removed_gain) break;
+        if (c(e, a) >= removed_gain) continue;
         if ((pos_[a] - pos_[s1] + n_) % n_ < len) continue;  // inside the segment
         for (int side = 0; side < 2; ++side) {
           const int b = side == 0 ? succ(a) : pred(a);
@@ -146,22 +151,22 @@ bool KOptLocalSearch::applyMove(const int* removed, const int* added, int k, dou
   // Cut r (after sorting) is the tour edge between positions cut[r] and cut[r] + 1,
   // segment r runs from cut[r - 1] + 1 to cut[r]. Endpoint 2r = start of
   // segment r, 2r + 1 = its end.
-  int cut[5], order[5];
+  int cut[kMaxK], order[kMaxK];
   for (int i = 0; i < k; ++i) {
     const int a = removed[2 * i], b = removed[2 * i + 1];
     cut[i] = succ(a) == b ? pos_[a] : pos_[b];
     order[i] = i;
   }
-  for (int i = 1; i < k; ++i) {  // insertion sort: k <= 5
+  for (int i = 1; i < k; ++i) {  // insertion sort, k is small
     for (int j = i; j > 0 && cut[order[j]] < cut[order[j - 1]]; --j) std::swap(order[j], order[j - 1]);
   }
-  int sorted[5];
+  int sorted[kMaxK];
   for (int r = 0; r < k; ++r) sorted[r] = cut[order[r]];
   for (int r = 1; r < k; ++r) {
     if (sorted[r] == sorted[r - 1]) return false;
   }
   // Endpoint instances of the removed edges' nodes.
-  int node_of[10], used[10] = {0};
+  int node_of[2 * kMaxK], used[2 * kMaxK] = {0};
   for (int r = 0; r < k; ++r) {
     node_of[2 * r + 1] = tour_[sorted[r]];
     node_of[2 * ((r + 1) % k)] = tour_[sorted[r] + 1 == n_ ? 0 : sorted[r] + 1];
@@ -175,7 +180,7 @@ bool KOptLocalSearch::applyMove(const int* removed, const int* added, int k, dou
     }
     return -1;
   };
-  int mate[10];
+  int mate[2 * kMaxK];
   for (int i = 0; i < k; ++i) {
     const int x = endpoint(added[2 * i]), y = endpoint(added[2 * i + 1]);
     if (x < 0 || y < 0) return false;

@@ -9,6 +9,7 @@
 #include "surface_nbv/planning/held_karp.h"
 #include "surface_nbv/planning/jonker_volgenant.h"
 #include "surface_nbv/planning/k_opt_local_search.h"
+#include "surface_nbv/planning/lk_candidates.h"
 
 namespace surface_nbv {
 namespace {
@@ -16,26 +17,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// Nearest candidates of every node by cost, leaving out forbidden edges and the fixed partner.
-std::vector<std::vector<int>> candidateLists(const CostMatrix& costs, const std::vector<int>& fixed, double forbidden,
-                                             int count) {
-  const int n = costs.size();
-  std::vector<std::vector<int>> lists(n);
-  std::vector<int> others;
-  for (int a = 0; a < n; ++a) {
-    others.clear();
-    for (int b = 0; b < n; ++b) {
-      if (b != a && b != fixed[a] && costs(a, b) < forbidden) others.push_back(b);
-    }
-    const int m = std::min<int>(count, others.size());
-    std::partial_sort(others.begin(), others.begin() + m, others.end(), [&](int x, int y) {
-      return costs(a, x) < costs(a, y) || (costs(a, x) == costs(a, y) && x < y);
-    });
-    lists[a].assign(others.begin(), others.begin() + m);
-  }
-  return lists;
-}
 
 // Nearest-neighbour tour from `start` that always takes the fixed partner next when it is unvisited.
 std::vector<int> nearestNeighbourTour(const CostMatrix& costs, const std::vector<int>& fixed, int start) {
@@ -64,12 +45,11 @@ struct LkRun {
 };
 
 // Restarts of kick-and-improve on a symmetric matrix; `fixed` pairs are never cut.
-LkRun runLk(const CostMatrix& costs, const std::vector<int>& fixed, double forbidden, int trials_per_restart,
-            int or_opt_segment, int kick_segment, const LinKernighanSolver::Config& config,
-            Clock::time_point deadline) {
+LkRun runLk(const CostMatrix& costs, const std::vector<int>& fixed, std::vector<std::vector<int>> candidates,
+            std::vector<int> breadth, int trials_per_restart, int or_opt_segment, int kick_segment,
+            const LinKernighanSolver::Config& config, Clock::time_point deadline) {
   const int n = costs.size();
-  KOptLocalSearch search(costs, candidateLists(costs, fixed, forbidden, config.max_candidates), fixed,
-                         config.max_depth, or_opt_segment);
+  KOptLocalSearch search(costs, std::move(candidates), fixed, config.max_depth, or_opt_segment, std::move(breadth));
   std::mt19937_64 rng(config.seed);
   LkRun best;
   for (int restart = 0; restart < config.restarts && !best.timed_out; ++restart) {
@@ -110,9 +90,10 @@ Status LinKernighanSolver::Config::validate() const {
   if (max_trials < -1) return Status::Error("max_trials expected >= -1");
   if (!(time_limit_s >= 0)) return Status::Error("time_limit_s expected >= 0");
   if (max_candidates < 2) return Status::Error("max_candidates expected >= 2");
-  if (max_depth < 3 || max_depth > 5) return Status::Error("max_depth expected in [3, 5]");
+  if (max_depth < 3 || max_depth > KOptLocalSearch::kMaxK)
+    return Status::Error("max_depth expected in [3, " + std::to_string(KOptLocalSearch::kMaxK) + "]");
   if (or_opt_max_segment < 0) return Status::Error("or_opt_max_segment expected >= 0");
-  if (kick_segment < 1) return Status::Error("kick_segment expected >= 1");
+  if (kick_segment < 0) return Status::Error("kick_segment expected >= 0");
   if (exact_max_nodes < 0 || exact_max_nodes > kHeldKarpMaxNodes)
     return Status::Error("exact_max_nodes expected in [0, " + std::to_string(kHeldKarpMaxNodes) + "]");
   return Status::Ok();
@@ -151,11 +132,13 @@ TourResult LinKernighanSolver::solve(const CostMatrix& costs) const {
       config_.time_limit_s > 0 ? t0 + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(config_.time_limit_s))
                                : Clock::time_point::max();
-  const int trials = config_.max_trials >= 0 ? config_.max_trials : std::max(n, 100);
+  const int trials = config_.max_trials >= 0 ? config_.max_trials : std::max(100, std::min(4 * n - 100, 2000));
+  const int kick_segment = config_.kick_segment > 0 ? config_.kick_segment : n;
   LkRun run;
   if (costs.isSymmetric()) {
-    run = runLk(costs, std::vector<int>(n, -1), CostMatrix::kMaxCost * 2, trials, config_.or_opt_max_segment,
-                config_.kick_segment, config_, deadline);
+    const std::vector<int> fixed(n, -1);
+    run = runLk(costs, fixed, nearestCandidates(costs, fixed, CostMatrix::kMaxCost * 2, config_.max_candidates),
+                {5, 5, 3, 2, 1}, trials, config_.or_opt_max_segment, kick_segment, config_, deadline);
     r.tour = run.tour;
   } else {
     const JvTransform jv = jonkerVolgenant(costs, 0.0);
@@ -164,8 +147,11 @@ TourResult LinKernighanSolver::solve(const CostMatrix& costs) const {
       fixed[i] = n + i;
       fixed[n + i] = i;
     }
-    run = runLk(jv.symmetric, fixed, jv.forbidden, trials, 2 * config_.or_opt_max_segment, 2 * config_.kick_segment,
-                config_, deadline);
+    // Every candidate on the first four levels (the 3- and 5-opt moves), then
+    // a narrow search for the 7-opt ones.
+    const int all = config_.max_candidates;
+    run = runLk(jv.symmetric, fixed, assignmentCandidates(costs, all), {all, all, all, all, 2, 1}, trials,
+                2 * config_.or_opt_max_segment, 2 * kick_segment, config_, deadline);
     if (!symmetricToAtspTour(run.tour, n, &r.tour)) {
       r.status = TspStatus::kInvalidInput;
       r.message = "internal error: the symmetric tour lost a Jonker-Volgenant pair edge";

@@ -51,8 +51,10 @@ Status fromImageMsg(const sensor_msgs::Image& msg, DepthImage* depth) {
         std::memcpy(&mm, b, 2);
         z = 0.001f * mm;
       }
+      // REP 117: +-Inf pass through (no return / too close); NaN, zero and
+      // negative depths become NaN (invalid).
       depth->at(static_cast<int>(r), static_cast<int>(c)) =
-          std::isfinite(z) && z > 0.0f ? z : std::numeric_limits<float>::quiet_NaN();
+          std::isinf(z) || (std::isfinite(z) && z > 0.0f) ? z : std::numeric_limits<float>::quiet_NaN();
     }
   }
   return Status::Ok();
@@ -68,6 +70,26 @@ void toCameraInfoMsg(const DepthCamera& camera, const std_msgs::Header& header, 
   msg->R = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
   msg->P = {camera.fx(), 0.0, camera.cx(), 0.0, 0.0, camera.fy(), camera.cy(), 0.0, 0.0, 0.0, 1.0, 0.0};
   msg->binning_x = msg->binning_y = 0;
+}
+
+Status fromCameraInfoMsg(const sensor_msgs::CameraInfo& msg, const CameraConfig& base, DepthCamera* camera) {
+  const double fx = msg.K[0], fy = msg.K[4], cx = msg.K[2], cy = msg.K[5];
+  const double w = msg.width, h = msg.height;
+  const bool ok = std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy) && fx > 0 &&
+                  fy > 0 && msg.width > 0 && msg.height > 0 && msg.width <= 16384 && msg.height <= 16384 &&
+                  cx >= -w && cx <= 2.0 * w && cy >= -h && cy <= 2.0 * h;
+  if (!ok) {
+    return Status::Error("camera_info refused (size " + std::to_string(msg.width) + "x" + std::to_string(msg.height) +
+                         ", K = [" + std::to_string(fx) + " " + std::to_string(fy) + " " + std::to_string(cx) + " " +
+                         std::to_string(cy) + "])");
+  }
+  CameraConfig c = base;
+  c.width = static_cast<int>(msg.width);
+  c.height = static_cast<int>(msg.height);
+  const DepthCamera result(c, fx, fy, cx, cy);
+  if (Status s = result.config().validate(); !s) return Status::Error("camera_info refused: " + s.message());
+  *camera = result;
+  return Status::Ok();
 }
 
 void toPointCloud2Msg(const std::vector<Eigen::Vector3f>& points, const std_msgs::Header& header,
@@ -92,7 +114,7 @@ void toPointCloud2Msg(const std::vector<Eigen::Vector3f>& points, const std_msgs
 }
 
 Status fromPointCloud2Msg(const sensor_msgs::PointCloud2& msg, std::vector<Eigen::Vector3f>* points) {
-  int offsets[3] = {-1, -1, -1};
+  int64_t offsets[3] = {-1, -1, -1};
   const char* names[3] = {"x", "y", "z"};
   for (const sensor_msgs::PointField& f : msg.fields) {
     for (int i = 0; i < 3; ++i) {
@@ -100,12 +122,16 @@ Status fromPointCloud2Msg(const sensor_msgs::PointCloud2& msg, std::vector<Eigen
       if (f.datatype != sensor_msgs::PointField::FLOAT32 || f.count != 1) {
         return Status::Error(std::string("field ") + names[i] + " is not a single float32");
       }
-      offsets[i] = static_cast<int>(f.offset);
+      offsets[i] = static_cast<int64_t>(f.offset);
     }
   }
   for (int i = 0; i < 3; ++i) {
     if (offsets[i] < 0) return Status::Error(std::string("cloud has no field ") + names[i]);
     if (static_cast<uint64_t>(offsets[i]) + 4 > msg.point_step) return Status::Error("field offset beyond point_step");
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int64_t other = offsets[(i + 1) % 3];
+    if (offsets[i] < other + 4 && other < offsets[i] + 4) return Status::Error("fields x, y and z overlap");
   }
   if (msg.is_bigendian) return Status::Error("big-endian clouds are not supported");
   const uint64_t n = static_cast<uint64_t>(msg.width) * msg.height;
@@ -116,6 +142,8 @@ Status fromPointCloud2Msg(const sensor_msgs::PointCloud2& msg, std::vector<Eigen
                          std::to_string(n) + " points");
   }
   points->clear();
+  // Without this, a cloud of width 0 and height 4e9 spins through 4e9 empty rows.
+  if (n == 0) return Status::Ok();
   points->reserve(n);
   for (uint32_t r = 0; r < msg.height; ++r) {
     for (uint32_t c = 0; c < msg.width; ++c) {

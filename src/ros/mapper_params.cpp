@@ -54,7 +54,7 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {
-    return Status::Error(priv.resolveName("invalid_pixels") + " expected 'ignore' or 'clear', got '" + policy + "'");
+    return Status::Error(priv.resolveName("invalid_pixels") + " expected 'ignore', 'clear' or 'clear_inf', got '" + policy + "'");
   }
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));

@@ -88,13 +88,15 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
       for (int k = 0; k < kTileW * kTileH; ++k) {
         if (!valid[k]) continue;
         const int row = row0 + k / kTileW, col = col0 + k % kTileW;
-        float z = std::numeric_limits<float>::quiet_NaN();
+        // REP 117: +Inf = no return within max range, -Inf = too close.
+        float z = std::numeric_limits<float>::infinity();
         if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
           z = packet.ray.tfar[k];
           if (cfg.noise_k > 0.0) {
             z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index, static_cast<uint64_t>(row) * width + col);
           }
-          if (!(z >= min_z && z <= max_z)) z = std::numeric_limits<float>::quiet_NaN();
+          if (z < min_z) z = -std::numeric_limits<float>::infinity();
+          else if (!(z <= max_z)) z = std::numeric_limits<float>::infinity();
         }
         image->at(row, col) = z;
       }

@@ -25,17 +25,19 @@ sensor_msgs::Image floatImage(const std::vector<float>& values, int w, int h) {
 
 TEST(DepthConversions, FloatRoundTripKeepsValuesAndMakesBadDepthNaN) {
   const float inf = std::numeric_limits<float>::infinity();
-  const sensor_msgs::Image msg = floatImage({1.5f, NAN, 0.0f, -2.0f, inf, 7.25f}, 3, 2);
+  const sensor_msgs::Image msg = floatImage({1.5f, NAN, 0.0f, -2.0f, inf, 7.25f, -inf, 3.0f}, 4, 2);
   EXPECT_EQ(msg.encoding, "32FC1");
-  EXPECT_EQ(msg.step, 12u);
+  EXPECT_EQ(msg.step, 16u);
   DepthImage back;
   ASSERT_TRUE(fromImageMsg(msg, &back).ok());
   EXPECT_FLOAT_EQ(back.at(0, 0), 1.5f);
   EXPECT_TRUE(std::isnan(back.at(0, 1)));
-  EXPECT_TRUE(std::isnan(back.at(0, 2)));  // zero = no return
-  EXPECT_TRUE(std::isnan(back.at(1, 0)));  // negative
-  EXPECT_TRUE(std::isnan(back.at(1, 1)));  // infinite
-  EXPECT_FLOAT_EQ(back.at(1, 2), 7.25f);
+  EXPECT_TRUE(std::isnan(back.at(0, 2)));  // zero = invalid
+  EXPECT_TRUE(std::isnan(back.at(0, 3)));  // negative
+  EXPECT_EQ(back.at(1, 0), inf);           // REP 117: no return within range
+  EXPECT_FLOAT_EQ(back.at(1, 1), 7.25f);
+  EXPECT_EQ(back.at(1, 2), -inf);          // REP 117: too close
+  EXPECT_FLOAT_EQ(back.at(1, 3), 3.0f);
 }
 
 TEST(DepthConversions, MillimetreImagesAndPaddedRows) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace surface_nbv {
 namespace {
 
@@ -182,14 +184,14 @@ TEST(DepthRenderer, ProceduralBoxFromMinusX) {
   // 0.5 (rows 32..447), all at depth 4.
   EXPECT_EQ(image.validCount(), 320u * 416u);
   EXPECT_EQ(countOff(image, 4.0, 1e-5), 640u * 480u - 320u * 416u);
-  EXPECT_TRUE(std::isnan(image.at(240, 159)));
+  EXPECT_EQ(image.at(240, 159), std::numeric_limits<float>::infinity());
   EXPECT_NEAR(image.at(240, 160), 4.0, 1e-5);
   EXPECT_NEAR(image.at(240, 479), 4.0, 1e-5);
-  EXPECT_TRUE(std::isnan(image.at(240, 480)));
-  EXPECT_TRUE(std::isnan(image.at(31, 320)));
+  EXPECT_EQ(image.at(240, 480), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(image.at(31, 320), std::numeric_limits<float>::infinity());
   EXPECT_NEAR(image.at(32, 320), 4.0, 1e-5);
   EXPECT_NEAR(image.at(447, 320), 4.0, 1e-5);
-  EXPECT_TRUE(std::isnan(image.at(448, 320)));
+  EXPECT_EQ(image.at(448, 320), std::numeric_limits<float>::infinity());
   // World y = +2 (left of the camera) is on the left: column 160.
   EXPECT_TRUE(std::isfinite(image.at(240, 160)));
 }
@@ -219,7 +221,7 @@ TEST(DepthRenderer, ProceduralRoomPillarTooCloseIsNotSeenThrough) {
   EXPECT_NEAR(image.at(240, 320), 5.0, 1e-5);
   // The left edge column meets the pillar face x = 1.5 at y = 1.497: 1.5 m is
   // below the 1.6 m minimum range, so no return (not the wall behind it).
-  EXPECT_TRUE(std::isnan(image.at(240, 0)));
+  EXPECT_EQ(image.at(240, 0), -std::numeric_limits<float>::infinity());  // REP 117 too close
   // The right edge column meets the wall y = -4 at depth 4 / 0.9984.
   EXPECT_NEAR(image.at(240, 639), 4.0 / (319.5 / 320.0), 1e-4);
 }

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/depth_image.h"
 
@@ -17,8 +18,10 @@ namespace surface_nbv {
 
 class DepthIndex {
  public:
-  // Returns the number of invalid pixels (NaN, zero, outside the range).
-  size_t build(const DepthCamera& camera, const DepthImage& depth, float truncation, bool clear_invalid, int threads);
+  // Returns the number of invalid pixels (NaN, +-Inf, zero, outside the
+  // range); `policy` says which of them clear free space up to max range.
+  size_t build(const DepthCamera& camera, const DepthImage& depth, float truncation, InvalidPixelPolicy policy,
+               int threads);
 
   float usable(size_t pixel) const { return usable_[pixel]; }
   bool silhouette(size_t pixel) const { return silhouette_[pixel] != 0; }

@@ -13,6 +13,11 @@ namespace surface_nbv {
 enum class InvalidPixelPolicy {
   kIgnore,            // nothing: the ray carries no information
   kClearToMaxRange,   // free space along the ray up to max range (no surface)
+  // REP 117: +Inf ("no return within max range") and depths beyond max range
+  // clear free space up to max range, every other invalid pixel (NaN, -Inf =
+  // too close, zero, below min range) is ignored. Safe next to close objects,
+  // and open sky becomes known free space.
+  kClearInfinite,
 };
 
 const char* toString(InvalidPixelPolicy policy);
@@ -25,7 +30,7 @@ struct TsdfConfig {
   float max_weight = 0.0f;        // cap on w; 0 = no cap
   AlignedBox bounds{Eigen::Vector3d(-10, -10, -1), Eigen::Vector3d(10, 10, 9)};
   size_t max_blocks = 1u << 20;   // allocation stops there (counted, never a crash)
-  InvalidPixelPolicy invalid_pixels = InvalidPixelPolicy::kIgnore;
+  InvalidPixelPolicy invalid_pixels = InvalidPixelPolicy::kClearInfinite;
   int threads = 1;                // integration threads
 
   double truncationDistance() const { return truncation > 0.0 ? truncation : 3.0 * voxel_size; }

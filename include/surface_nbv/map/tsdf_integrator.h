@@ -47,6 +47,13 @@ class TsdfIntegrator {
   Status integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S, double max_range,
                          IntegrationStats* stats = nullptr);
 
+  // Declares the ball (centre, radius) free where the map does not know it
+  // yet: every voxel whose centre lies inside and whose weight is below W_th
+  // gets phi = truncation and w = W_th. Observed voxels are left as they are.
+  // The space a UAV occupies at take-off is free, but a depth camera cannot
+  // see it (min range). Returns the voxels changed; error for a bad ball.
+  Status markFree(const Eigen::Vector3d& center, double radius, size_t* changed = nullptr);
+
  private:
   // Blocks that can be in view and not hidden behind surfaces, allocated.
   std::vector<TsdfBlock*> candidateBlocks(const DepthCamera& camera, const Transform& T_W_C, IntegrationStats* stats);

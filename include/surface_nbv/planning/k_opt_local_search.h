@@ -18,10 +18,14 @@ namespace surface_nbv {
 class KOptLocalSearch {
  public:
   using Clock = std::chrono::steady_clock;
+  static constexpr int kMaxK = 8;  // deepest sequential move
 
-  // candidates[a]: nodes to try joining to a, cheapest first. `costs` must outlive this.
+  // candidates[a]: nodes to try joining to a, best first. `costs` must
+  // outlive this. breadth[i]: how many added edges (each passing the
+  // positive-gain rule) are tried at level i + 1 of the search; the last
+  // entry repeats, empty = 5 at every level.
   KOptLocalSearch(const CostMatrix& costs, std::vector<std::vector<int>> candidates, std::vector<int> fixed_partner,
-                  int max_depth, int or_opt_max_segment);
+                  int max_depth, int or_opt_max_segment, std::vector<int> breadth = {});
 
   // `tour` must be a permutation containing every fixed edge.
   void setTour(const std::vector<int>& tour);
@@ -56,6 +60,8 @@ class KOptLocalSearch {
   const CostMatrix& costs_;
   std::vector<std::vector<int>> candidates_;
   std::vector<int> fixed_;
+  std::vector<int> breadth_;
+  bool all_fixed_ = false;
   int max_depth_, or_opt_max_segment_;
   int n_ = 0;
   std::vector<int> tour_, pos_, buffer_;
@@ -63,7 +69,7 @@ class KOptLocalSearch {
   std::vector<int> queue_;
   size_t queue_head_ = 0;
   std::vector<uint8_t> active_;
-  int t_[12];
+  int t_[2 * kMaxK + 2];
 };
 
 }  // namespace surface_nbv

@@ -1,7 +1,8 @@
 // Renders depth images of a RaycastScene with Embree 16-wide ray packets
 // (4 x 4 pixel tiles), bands of rows shared among `threads` worker threads
 // (the calling thread is one of them). Output is z in the optical
-// frame in metres, NaN for no return or a depth outside the camera's range.
+// frame in metres; REP 117: +Inf for no return within max range, -Inf for a
+// surface closer than min range.
 // Noise (if the camera's noise_k > 0) is a pure function of (seed, frame
 // index, pixel), so an image repeats exactly whatever the thread count.
 // Thread safety: render() is const; one renderer may serve many threads.

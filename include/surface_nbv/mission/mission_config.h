@@ -1,0 +1,64 @@
+// Everything one headless mission needs (nbv_mission), read from the same
+// YAML files the ROS launch loads (config/<scene>.yaml), so both run the same
+// parameters:
+//   nbv:        shared map, camera and Table 1 parameters (voxel_size, w_th,
+//               bounds_min/max, camera{...}, delta_pose, d_nu, d_nu_max,
+//               lambda_tc, lambda_ic)
+//   depth_sim:  the scene (scene, scene_scale, scene_offset, crop_min/max);
+//               its other, node-only keys are not read here
+//   mission:    the mission itself (start pose, speed, frame rate, frontier
+//               period, budgets, seeds); every key optional, unknown keys refused.
+// ROS-free (yaml-cpp). Units: metres, seconds, radians unless a key says _deg.
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/scene_source.h"
+#include "surface_nbv/surface/surface_config.h"
+#include "surface_nbv/tracking/tracker_sim.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+struct MissionConfig {
+  SceneConfig scene;
+  CameraConfig camera;
+  TsdfConfig tsdf;
+  CollisionConfig collision;
+  SurfaceConfig surface;
+  ExplorerConfig explorer;
+  PathPlannerConfig path;
+  TrackerSimConfig tracker;
+
+  Eigen::Vector4d start{0.0, 0.0, 2.0, 0.0};  // [x, y, z, yaw] at take-off
+  double speed = 0.5;              // reference speed [m/s] (the paper's)
+  double yaw_rate = 0.5;           // reference yaw rate [rad/s]
+  double frame_rate = 5.0;         // depth frames integrated per flight second
+  double frontier_period = 4.0;    // flight seconds between frontier updates on a leg
+  double max_flight_time = 5400.0; // the mission stops there [s]
+  double start_free_radius = 3.0;  // the take-off ball is free space [m]
+  double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
+  double progress_period = 60.0;   // flight seconds between progress lines
+  int threads = 2;                 // render, integration and frontier threads
+  unsigned int seed = 1;           // path sampling and depth noise (per trial: seed + trial)
+
+  // Names the first bad key.
+  Status validate() const;
+};
+
+// Reads `file` over the defaults of *config. Error (naming file and key) on
+// a missing file, bad YAML, a value of the wrong type or an unknown key of
+// the mission section.
+Status loadMissionConfig(const std::string& file, MissionConfig* config);
+
+// The configuration for a built-in scene name or mesh file: config/<scene>.yaml
+// of the package when it exists (`package_dir` is the package's source
+// directory), else the defaults with the scene set.
+std::string defaultConfigFile(const std::string& package_dir, const std::string& scene);
+
+}  // namespace surface_nbv

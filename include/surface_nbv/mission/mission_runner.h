@@ -1,0 +1,87 @@
+// One whole exploration mission in one process, without ROS: the same core
+// objects the nodes wrap, wired as the node graph wires them.
+//
+//   DepthRenderer (Embree) -> TsdfIntegrator -> CollisionMap -> FrontierBuilder
+//   -> Explorer (Fig. 1: cluster graph, LK tour, LazyPRM* legs)
+//   -> timeWaypoints at the reference speed -> TrackerSim (MPC + UAV model)
+//
+// Flight time advances in the tracker's fixed steps; a depth frame is rendered
+// at the UAV's pose every 1 / frame_rate flight seconds, the frontier is
+// rebuilt every frontier_period flight seconds and whenever a leg ends. At
+// take-off the ball of start_free_radius is declared free (the camera cannot
+// see closer than min range) and the UAV turns start_spin in place. The
+// mission ends when the Explorer says so (no ISE of C_ins left, or nothing
+// reachable) or at max_flight_time. Same config and seed: same mission.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "surface_nbv/map/tsdf_map.h"
+#include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/sim/raycast_scene.h"
+#include "surface_nbv/sim/triangle_mesh.h"
+
+namespace surface_nbv {
+
+// One frontier update of the mission, with what the map and plan looked like.
+struct MissionEvent {
+  double t = 0.0;              // flight time [s]
+  double path_length = 0.0;    // flown so far [m]
+  size_t ises = 0, inside = 0, remaining = 0, viewpoints = 0, clusters = 0, tour = 0;
+  double observed = -1.0;      // fraction of probe points observed; -1 when not measured
+  std::string action, reason;  // the Explorer's decision
+};
+
+struct MissionStageTimes {  // wall-clock milliseconds, summed over the mission
+  double render = 0, integrate = 0, collision = 0, frontier = 0, graph = 0, tour = 0, path = 0, tracker = 0;
+  double total() const { return render + integrate + collision + frontier + graph + tour + path + tracker; }
+};
+
+struct MissionResult {
+  Status status;                        // an error means the mission could not run
+  bool completed = false;               // ended by "no ISE of C_ins remains"
+  std::string end_reason;
+  double flight_time = 0.0;             // s
+  double path_length = 0.0;             // m
+  double wall_time = 0.0;               // s
+  size_t frames = 0, frontier_updates = 0;
+  ExplorerStats explorer;
+  size_t blacklisted = 0;
+  size_t final_ises = 0, final_inside = 0;
+  std::vector<Eigen::Vector4d> flown;   // pose at every frame [x, y, z, yaw]
+  std::vector<double> flown_t;          // its flight time
+  std::vector<MissionEvent> events;     // one per frontier update
+  MissionStageTimes times;
+  double max_frontier_ms = 0.0, max_plan_ms = 0.0;  // slowest single update / Explorer decision
+};
+
+class MissionRunner {
+ public:
+  // `config` must validate(); `scene` renders the depth (not owned).
+  MissionRunner(const MissionConfig& config, const RaycastScene& scene);
+  ~MissionRunner();
+
+  // Points on the true surface: at every progress line the fraction of them
+  // in observed surface voxels is measured (a cheap running coverage).
+  void setProbePoints(std::vector<Eigen::Vector3d> points) { probe_ = std::move(points); }
+  // Called with each event that carries a progress measurement.
+  void setProgress(std::function<void(const MissionEvent&)> progress) { progress_ = std::move(progress); }
+
+  MissionResult run();
+  // The map after run().
+  const TsdfMap& map() const;
+
+ private:
+  double observedFraction() const;
+
+  MissionConfig config_;
+  const RaycastScene& scene_;
+  std::unique_ptr<TsdfMap> map_;
+  std::vector<Eigen::Vector3d> probe_;
+  std::function<void(const MissionEvent&)> progress_;
+};
+
+}  // namespace surface_nbv

@@ -1,0 +1,160 @@
+// The replanning loop of the paper's Fig. 1 (METHOD.md, "Replanning"), ROS-free:
+// given each new Frontier and the UAV's configuration, it keeps a tour of
+// viewpoints and hands out the next leg to fly.
+//
+//   full recomputation   the cluster graph (eq. 4, 5) over the frontier and
+//                        the Lin-Kernighan open path from the UAV (planTour),
+//                        when there is no tour yet or every tour viewpoint
+//                        has been visited;
+//   local update         on every other frontier: tour viewpoints no frontier
+//                        viewpoint is near any more (their ISEs were
+//                        covered) leave the tour, frontier viewpoints near no
+//                        tour viewpoint (new ISEs) join it by cheapest
+//                        insertion, and the order of the rest is kept;
+//   leg                  a collision-checked LazyPRM* path from the UAV to the
+//                        first tour viewpoint, re-planned when the map puts an
+//                        obstacle on it (checkPath) or the target leaves the tour;
+//   stop                 when no ISE of C_ins remains, or none of the
+//                        remaining viewpoints can be reached: the decision
+//                        says which.
+//
+// A target that cannot be reached (no path, or the leg ended away from it)
+// counts a failure at its place; after max_failures failures, or after
+// max_visits visits that left it in the frontier, every viewpoint within
+// blacklist_radius of that place is ignored from then on and reported.
+// Distances inside the cluster graph are straight lines (the graph needs
+// O(clusters x viewpoints) of them); legs are real paths.
+// Deterministic for a seed and iteration-bounded path planning. Not thread-safe.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "surface_nbv/planning/cluster_graph.h"
+#include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/surface/frontier.h"
+
+namespace surface_nbv {
+
+struct ExplorerConfig {
+  ClusterGraphConfig graph;
+  LinKernighanSolver::Config tsp;
+  double match_radius = 1.0;      // m: a tour viewpoint is the same as a frontier one this close
+  double reach_tolerance = 0.6;   // m: a finished leg this close to its target visited it
+  int max_failures = 3;           // unreachable attempts before a place is blacklisted
+  int max_visits = 2;             // visits that left a viewpoint in the frontier before blacklisting
+  double blacklist_radius = 1.0;  // m
+  int max_leg_attempts = 6;       // targets tried per decision before hovering
+  bool always_full = false;       // recompute the whole tour on every frontier (comparison mode)
+
+  // Names the first bad key.
+  Status validate() const;
+};
+
+enum class ExplorerAction {
+  kContinue,  // keep flying the current leg
+  kFly,       // fly `path` (a new leg)
+  kHover,     // hold the current pose; nothing reachable right now
+  kDone,      // the mission is over (see reason)
+};
+
+enum class ReplanReason {
+  kNone,
+  kInitial,            // first tour
+  kTourFinished,       // every tour viewpoint visited: full recomputation
+  kNewIses,            // new viewpoints joined the tour: local update
+  kTargetCovered,      // the current target left the frontier: local update
+  kTargetReached,      // the leg ended at its target: next leg
+  kPathBlocked,        // an obstacle on the current leg
+  kTargetUnreachable,  // no path to the target
+  kRequested,          // replan() was called
+  kComplete,           // no ISE of C_ins remains
+  kNoReachableTarget,  // ISEs of C_ins remain, but no viewpoint can be reached
+};
+
+const char* toString(ExplorerAction action);
+const char* toString(ReplanReason reason);
+
+struct ExplorerTimings {
+  double graph_ms = 0.0, tour_ms = 0.0, path_ms = 0.0, total_ms = 0.0;
+};
+
+struct ExplorerDecision {
+  ExplorerAction action = ExplorerAction::kContinue;
+  ReplanReason reason = ReplanReason::kNone;
+  bool full_recompute = false;
+  std::vector<Eigen::Vector4d> path;          // kFly: UAV -> target, [x, y, z, yaw]
+  Eigen::Vector4d target = Eigen::Vector4d::Zero();
+  PathStatus path_status = PathStatus::kExactSolution;  // of the last leg query
+  ExplorerTimings timings;
+  std::string message;
+};
+
+struct ExplorerStats {
+  size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
+  size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
+  size_t tour_viewpoints = 0, clusters = 0;
+  double tour_cost = 0.0;       // of the last full recomputation
+  ExplorerTimings last;         // the last decision
+};
+
+class Explorer {
+ public:
+  // Both configs must validate(); the constructor trusts them.
+  Explorer(const ExplorerConfig& config, const PathPlannerConfig& path_config);
+
+  // The collision map legs are planned in (not owned) and the sampling bounds.
+  Status setMap(const CollisionMap* map, const AlignedBox& bounds);
+  // The collision map was updated: path validity is re-checked lazily.
+  void mapChanged() { planner_.mapChanged(); }
+
+  // A new frontier (built on the current map), the UAV's configuration, and
+  // whether the current leg has ended (the tracker finished it).
+  ExplorerDecision update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished);
+  // Between frontiers: a new leg to the same target if the map now blocks the
+  // current one, else kContinue.
+  ExplorerDecision checkPath(const Eigen::Vector4d& uav);
+  // The next update() recomputes the whole tour.
+  void replan() { tour_.clear(), have_target_ = false, requested_ = true; }
+  // Forgets tour, failures and blacklist (the roadmap is kept).
+  void reset();
+
+  const std::vector<Eigen::Vector4d>& tour() const { return tour_; }
+  const std::vector<Eigen::Vector4d>& currentPath() const { return path_; }
+  bool hasTarget() const { return have_target_; }
+  const std::vector<Eigen::Vector3d>& blacklist() const { return blacklist_; }
+  const ExplorerStats& stats() const { return stats_; }
+  const ExplorerConfig& config() const { return config_; }
+  PathPlanner& pathPlanner() { return planner_; }
+
+ private:
+  struct Place {
+    Eigen::Vector3d position;
+    int failures = 0, visits = 0;
+  };
+  Place& placeAt(const Eigen::Vector3d& p);
+  bool blacklisted(const Eigen::Vector3d& p) const;
+  void countFailure(const Eigen::Vector3d& p);
+  Frontier withoutBlacklisted(const Frontier& frontier) const;
+  bool fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
+  bool localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
+  bool pathBlocked(const Eigen::Vector4d& uav) const;
+  // The point nearest p (within `within`) clear of the radius plus a cell;
+  // writes its position into q's first three coordinates.
+  bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
+  void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
+
+  ExplorerConfig config_;
+  PathPlanner planner_;
+  const CollisionMap* map_ = nullptr;
+  double collision_radius_ = 1.0;
+  std::vector<Eigen::Vector4d> tour_;   // front = current target while have_target_
+  std::vector<Eigen::Vector4d> path_;   // current leg
+  bool have_target_ = false;
+  bool requested_ = false;
+  std::vector<Place> places_;
+  std::vector<Eigen::Vector3d> blacklist_;
+  ExplorerStats stats_;
+};
+
+}  // namespace surface_nbv

@@ -1,0 +1,177 @@
+#include "surface_nbv/mission/mission_config.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include <yaml-cpp/yaml.h>
+
+namespace surface_nbv {
+namespace {
+
+// Typed reads from one YAML map; the first failure is kept and named.
+class YamlSection {
+ public:
+  YamlSection(const YAML::Node& node, std::string name) : node_(node), name_(std::move(name)) {}
+
+  bool present() const { return node_ && node_.IsMap(); }
+  const Status& status() const { return status_; }
+
+  template <typename T>
+  void get(const std::string& key, T* value) {
+    seen_.insert(key);
+    if (!status_ || !present() || !node_[key]) return;
+    try {
+      *value = node_[key].as<T>();
+    } catch (const YAML::Exception& e) {
+      fail(key, "has the wrong type");
+    }
+  }
+  void getVector(const std::string& key, Eigen::Vector3d* v) {
+    std::vector<double> values;
+    get(key, &values);
+    if (!status_ || !present() || !node_[key]) return;
+    if (values.size() != 3) return fail(key, "expected [x, y, z]");
+    *v = Eigen::Vector3d(values[0], values[1], values[2]);
+  }
+  void getVector4(const std::string& key, Eigen::Vector4d* v) {
+    std::vector<double> values;
+    get(key, &values);
+    if (!status_ || !present() || !node_[key]) return;
+    if (values.size() != 4) return fail(key, "expected [x, y, z, yaw]");
+    *v = Eigen::Vector4d(values[0], values[1], values[2], values[3]);
+  }
+  YamlSection child(const std::string& key) {
+    seen_.insert(key);
+    return YamlSection(present() ? node_[key] : YAML::Node(), name_ + "/" + key);
+  }
+  // Every key of the section must have been asked for.
+  void refuseUnknown() {
+    if (!status_ || !present()) return;
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.as<std::string>();
+      if (!seen_.count(key)) return fail(key, "is not a known key");
+    }
+  }
+  void fail(const std::string& key, const std::string& why) {
+    if (status_) status_ = Status::Error(name_ + "/" + key + " " + why);
+  }
+
+ private:
+  YAML::Node node_;
+  std::string name_;
+  std::set<std::string> seen_;
+  Status status_;
+};
+
+}  // namespace
+
+Status MissionConfig::validate() const {
+  if (Status s = scene.validate(); !s) return s;
+  if (Status s = camera.validate(); !s) return s;
+  if (Status s = tsdf.validate(); !s) return s;
+  if (Status s = collision.validate(); !s) return s;
+  if (Status s = surface.validate(); !s) return s;
+  if (Status s = explorer.validate(); !s) return s;
+  if (Status s = path.validate(); !s) return s;
+  if (Status s = tracker.validate(); !s) return s;
+  if (!start.allFinite() || !tsdf.bounds.contains(start.head<3>())) {
+    return Status::Error("mission/start expected a finite pose inside the map bounds");
+  }
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!positive(speed) || speed > 5.0) return Status::Error("mission/speed expected in (0, 5] m/s");
+  if (!positive(yaw_rate) || yaw_rate > 5.0) return Status::Error("mission/yaw_rate expected in (0, 5] rad/s");
+  if (!positive(frame_rate) || frame_rate > 100.0) return Status::Error("mission/frame_rate expected in (0, 100] Hz");
+  if (!positive(frontier_period)) return Status::Error("mission/frontier_period expected > 0");
+  if (!positive(max_flight_time)) return Status::Error("mission/max_flight_time expected > 0");
+  if (!(start_free_radius >= 0.0) || start_free_radius > 10.0) {
+    return Status::Error("mission/start_free_radius expected in [0, 10] m");
+  }
+  if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("mission/start_spin expected in [0, 20] rad");
+  if (!positive(progress_period)) return Status::Error("mission/progress_period expected > 0");
+  if (threads < 1 || threads > 64) return Status::Error("mission/threads expected in [1, 64]");
+  return Status::Ok();
+}
+
+Status loadMissionConfig(const std::string& file, MissionConfig* c) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    return Status::Error("cannot read '" + file + "': " + e.what());
+  }
+  if (!root.IsMap()) return Status::Error("'" + file + "' is not a YAML map");
+
+  YamlSection nbv(root["nbv"], "nbv");
+  nbv.get("voxel_size", &c->tsdf.voxel_size);
+  double w_th = c->tsdf.w_th;
+  nbv.get("w_th", &w_th);
+  c->tsdf.w_th = static_cast<float>(w_th);
+  nbv.getVector("bounds_min", &c->tsdf.bounds.min);
+  nbv.getVector("bounds_max", &c->tsdf.bounds.max);
+  YamlSection cam = nbv.child("camera");
+  cam.get("width", &c->camera.width);
+  cam.get("height", &c->camera.height);
+  cam.get("hfov_deg", &c->camera.hfov_deg);
+  cam.get("vfov_deg", &c->camera.vfov_deg);
+  cam.get("min_range", &c->camera.min_range);
+  cam.get("max_range", &c->camera.max_range);
+  cam.get("rate_hz", &c->camera.rate_hz);
+  cam.get("noise_k", &c->camera.noise_k);
+  cam.get("noise_seed", &c->camera.noise_seed);
+  nbv.get("delta_pose", &c->surface.delta_pose);
+  nbv.get("d_nu", &c->surface.d_nu);
+  nbv.get("d_nu_max", &c->surface.d_nu_max);
+  nbv.get("lambda_tc", &c->explorer.graph.lambda_tc);
+  nbv.get("lambda_ic", &c->explorer.graph.lambda_ic);
+  if (!cam.status()) return Status::Error(file + ": " + cam.status().message());
+  if (!nbv.status()) return Status::Error(file + ": " + nbv.status().message());
+
+  YamlSection sim(root["depth_sim"], "depth_sim");
+  sim.get("scene", &c->scene.scene);
+  sim.get("scene_scale", &c->scene.transform.scale);
+  sim.getVector("scene_offset", &c->scene.transform.offset);
+  sim.getVector("crop_min", &c->scene.transform.crop.min);
+  sim.getVector("crop_max", &c->scene.transform.crop.max);
+  if (!sim.status()) return Status::Error(file + ": " + sim.status().message());
+
+  YamlSection m(root["mission"], "mission");
+  m.getVector4("start", &c->start);
+  m.get("speed", &c->speed);
+  m.get("yaw_rate", &c->yaw_rate);
+  m.get("frame_rate", &c->frame_rate);
+  m.get("frontier_period", &c->frontier_period);
+  m.get("max_flight_time", &c->max_flight_time);
+  m.get("start_free_radius", &c->start_free_radius);
+  m.get("start_spin", &c->start_spin);
+  m.get("progress_period", &c->progress_period);
+  m.get("threads", &c->threads);
+  m.get("seed", &c->seed);
+  m.get("collision_radius", &c->path.collision_radius);
+  m.get("path_time_budget", &c->path.time_budget);
+  m.get("path_iterations", &c->path.iteration_budget);
+  m.get("match_radius", &c->explorer.match_radius);
+  m.get("reach_tolerance", &c->explorer.reach_tolerance);
+  m.get("max_failures", &c->explorer.max_failures);
+  m.get("max_visits", &c->explorer.max_visits);
+  m.get("blacklist_radius", &c->explorer.blacklist_radius);
+  m.get("always_full", &c->explorer.always_full);
+  std::string policy = toString(c->tsdf.invalid_pixels);
+  m.get("invalid_pixels", &policy);
+  m.refuseUnknown();
+  if (!m.status()) return Status::Error(file + ": " + m.status().message());
+  if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {
+    return Status::Error(file + ": mission/invalid_pixels expected 'ignore', 'clear' or 'clear_inf'");
+  }
+  c->surface.camera = c->camera;
+  c->surface.collision_radius = c->path.collision_radius;
+  return Status::Ok();
+}
+
+std::string defaultConfigFile(const std::string& package_dir, const std::string& scene) {
+  const std::string stem = std::filesystem::path(scene).stem().string();
+  const std::string candidate = package_dir + "/config/" + stem + ".yaml";
+  return std::filesystem::exists(candidate) ? candidate : std::string();
+}
+
+}  // namespace surface_nbv

@@ -1,0 +1,237 @@
+#include "surface_nbv/mission/mission_runner.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/tsdf_integrator.h"
+#include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/sim/depth_renderer.h"
+#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/surface/frontier_builder.h"
+#include "surface_nbv/tracking/tracker_sim.h"
+
+namespace surface_nbv {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+Transform bodyPose(const Eigen::Vector3d& p, double yaw) {
+  Transform T = Transform::Identity();
+  T.translation() = p;
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  return T;
+}
+
+Trajectory legTrajectory(const std::vector<Eigen::Vector4d>& path, const UavState& state, double t0,
+                         double speed, double yaw_rate) {
+  std::vector<Waypoint> waypoints;
+  waypoints.push_back({state.p_W, state.yaw});
+  for (const Eigen::Vector4d& q : path) waypoints.push_back({q.head<3>(), q.w()});
+  return timeWaypoints(waypoints, t0, speed, yaw_rate);
+}
+
+}  // namespace
+
+MissionRunner::MissionRunner(const MissionConfig& config, const RaycastScene& scene)
+    : config_(config), scene_(scene) {}
+
+MissionRunner::~MissionRunner() = default;
+
+const TsdfMap& MissionRunner::map() const { return *map_; }
+
+double MissionRunner::observedFraction() const {
+  if (probe_.empty() || !map_) return -1.0;
+  const float band = static_cast<float>(map_->voxelSize());
+  const float w_th = map_->config().w_th;
+  size_t seen = 0;
+  for (const Eigen::Vector3d& p : probe_) {
+    Eigen::Vector3i v;
+    if (!map_->voxelIndex(p, &v)) continue;
+    bool hit = false;
+    for (int dz = -1; dz <= 1 && !hit; ++dz)
+      for (int dy = -1; dy <= 1 && !hit; ++dy)
+        for (int dx = -1; dx <= 1 && !hit; ++dx) {
+          const TsdfVoxel* voxel = map_->voxel(v + Eigen::Vector3i(dx, dy, dz));
+          hit = voxel != nullptr && voxel->w >= w_th && std::abs(voxel->phi) <= band;
+        }
+    seen += hit ? 1 : 0;
+  }
+  return static_cast<double>(seen) / probe_.size();
+}
+
+MissionResult MissionRunner::run() {
+  const auto wall0 = Clock::now();
+  MissionResult result;
+  if (Status s = config_.validate(); !s) {
+    result.status = s;
+    return result;
+  }
+  const MissionConfig& c = config_;
+  TsdfConfig tsdf = c.tsdf;
+  tsdf.threads = c.threads;
+  map_ = std::make_unique<TsdfMap>(tsdf);
+  TsdfIntegrator integrator(map_.get());
+  CameraConfig camera_config = c.camera;
+  camera_config.noise_seed = c.camera.noise_seed + c.seed;
+  const DepthCamera camera(camera_config);
+  const DepthRenderer renderer(scene_, camera, c.threads);
+  const Transform T_B_C = opticalInBody();
+  SurfaceConfig surface = c.surface;
+  surface.threads = c.threads;
+  FrontierBuilder builder(surface);
+  PathPlannerConfig path = c.path;
+  path.seed = c.seed;
+  Explorer explorer(c.explorer, path);
+
+  if (Status s = integrator.markFree(c.start.head<3>(), c.start_free_radius); c.start_free_radius > 0.0 && !s) {
+    result.status = s;
+    return result;
+  }
+  CollisionMap collision(*map_, c.collision);
+  if (Status s = explorer.setMap(&collision, tsdf.bounds); !s) {
+    result.status = s;
+    return result;
+  }
+  UavState initial;
+  initial.p_W = c.start.head<3>();
+  initial.yaw = c.start.w();
+  TrackerSim tracker(c.tracker, initial);
+  // Take-off: turn in place to see around before the first plan.
+  if (c.start_spin > 0.0) {
+    std::vector<Eigen::Vector4d> spin;
+    const int steps = std::max(1, static_cast<int>(std::ceil(c.start_spin / (0.5 * M_PI))));
+    for (int k = 1; k <= steps; ++k) {
+      spin.emplace_back(c.start.x(), c.start.y(), c.start.z(), c.start.w() + c.start_spin * k / steps);
+    }
+    const Trajectory t = legTrajectory(spin, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
+    if (Status s = tracker.setTrajectory(t); !s) {
+      result.status = Status::Error("take-off spin refused: " + s.message());
+      return result;
+    }
+  }
+
+  const double frame_dt = 1.0 / c.frame_rate;
+  double next_frame = 0.0;
+  double next_frontier = c.start_spin > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+  double next_progress = 0.0;
+  Frontier frontier;
+  DepthImage depth;
+  Eigen::Vector3d last_p = tracker.state().p_W;
+  bool spinning = c.start_spin > 0.0;
+  while (tracker.time() < c.max_flight_time) {
+    // Fly to the next frame time.
+    const auto t_track = Clock::now();
+    while (tracker.time() + 1e-9 < next_frame) {
+      tracker.step();
+      result.path_length += (tracker.state().p_W - last_p).norm();
+      last_p = tracker.state().p_W;
+    }
+    result.times.tracker += msSince(t_track);
+    next_frame += frame_dt;
+    const UavState& state = tracker.state();
+    const Eigen::Vector4d uav(state.p_W.x(), state.p_W.y(), state.p_W.z(), state.yaw);
+    // Sense.
+    const Transform T_W_C = bodyPose(state.p_W, state.yaw) * T_B_C;
+    const auto t_render = Clock::now();
+    renderer.render(T_W_C, &depth, result.frames);
+    result.times.render += msSince(t_render);
+    const auto t_integrate = Clock::now();
+    if (Status s = integrator.integrateDepth(camera, depth, T_W_C); !s) {
+      result.status = Status::Error("integration failed at t = " + std::to_string(tracker.time()) + ": " + s.message());
+      break;
+    }
+    result.times.integrate += msSince(t_integrate);
+    ++result.frames;
+    result.flown.push_back(uav);
+    result.flown_t.push_back(tracker.time());
+
+    const bool leg_finished = tracker.mode() == TrackerMode::kFinished;
+    if (spinning && leg_finished) {
+      spinning = false;
+      next_frontier = tracker.time();
+    }
+    if (tracker.time() + 1e-9 < next_frontier && !(leg_finished && explorer.hasTarget())) continue;
+
+    // Map -> collision map -> frontier -> decision.
+    const auto t_collision = Clock::now();
+    collision.update(*map_);
+    explorer.mapChanged();
+    result.times.collision += msSince(t_collision);
+    const auto t_frontier = Clock::now();
+    if (Status s = builder.update(*map_, collision, &frontier); !s) {
+      result.status = Status::Error("frontier update failed: " + s.message());
+      break;
+    }
+    const double frontier_ms = msSince(t_frontier);
+    result.times.frontier += frontier_ms;
+    result.max_frontier_ms = std::max(result.max_frontier_ms, frontier_ms);
+    ++result.frontier_updates;
+    const ExplorerDecision d = explorer.update(frontier, uav, leg_finished);
+    if (std::getenv("NBV_DEBUG")) {
+      std::fprintf(stderr, "t %.1f uav %.2f %.2f %.2f: %s/%s path %s (%zu pts) target %.2f %.2f %.2f tour %zu free %.2f: %s\n",
+                   tracker.time(), uav.x(), uav.y(), uav.z(), toString(d.action), toString(d.reason),
+                   toString(d.path_status), d.path.size(), d.target.x(), d.target.y(), d.target.z(),
+                   explorer.tour().size(), collision.distance(uav.head<3>()), d.message.c_str());
+    }
+    result.times.graph += d.timings.graph_ms;
+    result.times.tour += d.timings.tour_ms;
+    result.times.path += d.timings.path_ms;
+    result.max_plan_ms = std::max(result.max_plan_ms, d.timings.total_ms);
+    next_frontier = tracker.time() + c.frontier_period;
+
+    MissionEvent event;
+    event.t = tracker.time();
+    event.path_length = result.path_length;
+    event.ises = frontier.ises.size();
+    event.inside = frontier.insideCount();
+    event.remaining = frontier.remaining;
+    event.viewpoints = frontier.viewpoints.size();
+    event.clusters = frontier.clusters.size();
+    event.tour = explorer.tour().size();
+    event.action = toString(d.action);
+    event.reason = toString(d.reason);
+    const bool done = d.action == ExplorerAction::kDone;
+    if (event.t >= next_progress || done) {
+      event.observed = observedFraction();
+      next_progress = event.t + c.progress_period;
+      if (progress_) progress_(event);
+    }
+    result.events.push_back(event);
+
+    if (done && std::getenv("NBV_DEBUG")) {
+      for (const Ise& ise : frontier.ises)
+        if (!ise.remaining) std::fprintf(stderr, "  ISE %.2f %.2f %.2f vp %d\n", ise.position.x(), ise.position.y(), ise.position.z(), ise.viewpoint);
+      for (const Eigen::Vector3d& b : explorer.blacklist()) std::fprintf(stderr, "  blacklisted %.2f %.2f %.2f\n", b.x(), b.y(), b.z());
+    }
+    if (done) {
+      result.completed = d.reason == ReplanReason::kComplete;
+      result.end_reason = std::string(toString(d.reason)) + ": " + d.message;
+      break;
+    }
+    if (d.action == ExplorerAction::kFly) {
+      const Trajectory t = legTrajectory(d.path, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
+      if (Status s = tracker.setTrajectory(t); !s) tracker.hold();
+    } else if (d.action == ExplorerAction::kHover) {
+      tracker.hold();
+    }
+  }
+  if (result.end_reason.empty() && result.status) {
+    result.end_reason = "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached";
+  }
+  result.flight_time = tracker.time();
+  result.explorer = explorer.stats();
+  result.blacklisted = explorer.blacklist().size();
+  result.final_ises = frontier.ises.size();
+  result.final_inside = frontier.insideCount();
+  result.wall_time = std::chrono::duration<double>(Clock::now() - wall0).count();
+  return result;
+}
+
+}  // namespace surface_nbv

@@ -1,0 +1,416 @@
+#include "surface_nbv/planning/explorer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "surface_nbv/map/collision_map.h"
+
+namespace surface_nbv {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Points hashed into cubes of `cell` metres, for "is any point within r" queries (r <= cell).
+class PointHash {
+ public:
+  explicit PointHash(double cell) : cell_(cell) {}
+  void add(const Eigen::Vector3d& p, int id) { cells_[key(cellOf(p))].push_back({p, id}); }
+  // Calls f(id) for every point within r of p, stops when f returns true; true if one did.
+  template <typename F>
+  bool any(const Eigen::Vector3d& p, double r, F f) const {
+    const Eigen::Vector3i c = cellOf(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (const auto& e : it->second)
+            if ((e.first - p).norm() <= r && f(e.second)) return true;
+        }
+    return false;
+  }
+
+ private:
+  Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
+  static int64_t key(const Eigen::Vector3i& c) {
+    return (static_cast<int64_t>(c.x()) * 73856093) ^ (static_cast<int64_t>(c.y()) * 19349663) ^
+           (static_cast<int64_t>(c.z()) * 83492791);
+  }
+  double cell_;
+  std::unordered_map<int64_t, std::vector<std::pair<Eigen::Vector3d, int>>> cells_;
+};
+
+// Frontier viewpoints worth visiting: in a cluster of positive gain.
+bool wanted(const Frontier& f, size_t i) {
+  const int32_t c = f.viewpoints[i].cluster;
+  return c >= 0 && static_cast<size_t>(c) < f.clusters.size() && f.clusters[c].gain > 0.0;
+}
+
+Eigen::Vector4d configurationOf(const Viewpoint& v) {
+  return Eigen::Vector4d(v.position.x(), v.position.y(), v.position.z(), v.yaw);
+}
+
+}  // namespace
+
+Status ExplorerConfig::validate() const {
+  if (Status s = graph.validate(); !s) return s;
+  if (Status s = tsp.validate(); !s) return s;
+  if (!(match_radius > 0.0) || !std::isfinite(match_radius)) return Status::Error("match_radius expected > 0");
+  if (!(reach_tolerance > 0.0) || !std::isfinite(reach_tolerance)) return Status::Error("reach_tolerance expected > 0");
+  if (max_failures < 1) return Status::Error("max_failures expected >= 1");
+  if (max_visits < 1) return Status::Error("max_visits expected >= 1");
+  if (!(blacklist_radius >= 0.0) || !std::isfinite(blacklist_radius)) {
+    return Status::Error("blacklist_radius expected >= 0");
+  }
+  if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
+  return Status::Ok();
+}
+
+const char* toString(ExplorerAction action) {
+  switch (action) {
+    case ExplorerAction::kContinue: return "continue";
+    case ExplorerAction::kFly: return "fly";
+    case ExplorerAction::kHover: return "hover";
+    case ExplorerAction::kDone: return "done";
+  }
+  return "unknown";
+}
+
+const char* toString(ReplanReason reason) {
+  switch (reason) {
+    case ReplanReason::kNone: return "none";
+    case ReplanReason::kInitial: return "initial";
+    case ReplanReason::kTourFinished: return "tour_finished";
+    case ReplanReason::kNewIses: return "new_ises";
+    case ReplanReason::kTargetCovered: return "target_covered";
+    case ReplanReason::kTargetReached: return "target_reached";
+    case ReplanReason::kPathBlocked: return "path_blocked";
+    case ReplanReason::kTargetUnreachable: return "target_unreachable";
+    case ReplanReason::kRequested: return "requested";
+    case ReplanReason::kComplete: return "complete";
+    case ReplanReason::kNoReachableTarget: return "no_reachable_target";
+  }
+  return "unknown";
+}
+
+Explorer::Explorer(const ExplorerConfig& config, const PathPlannerConfig& path_config)
+    : config_(config), planner_(path_config), collision_radius_(path_config.collision_radius) {}
+
+Status Explorer::setMap(const CollisionMap* map, const AlignedBox& bounds) {
+  if (Status s = planner_.setMap(map, bounds); !s) return s;
+  map_ = map;
+  return Status::Ok();
+}
+
+void Explorer::reset() {
+  tour_.clear();
+  path_.clear();
+  have_target_ = false;
+  requested_ = false;
+  places_.clear();
+  blacklist_.clear();
+  stats_ = ExplorerStats();
+}
+
+Explorer::Place& Explorer::placeAt(const Eigen::Vector3d& p) {
+  for (Place& place : places_)
+    if ((place.position - p).norm() <= config_.match_radius) return place;
+  places_.push_back(Place{p});
+  return places_.back();
+}
+
+bool Explorer::blacklisted(const Eigen::Vector3d& p) const {
+  for (const Eigen::Vector3d& b : blacklist_)
+    if ((b - p).norm() <= config_.blacklist_radius) return true;
+  return false;
+}
+
+void Explorer::countFailure(const Eigen::Vector3d& p) {
+  Place& place = placeAt(p);
+  if (++place.failures == config_.max_failures) blacklist_.push_back(place.position);
+}
+
+Frontier Explorer::withoutBlacklisted(const Frontier& frontier) const {
+  Frontier f = frontier;
+  if (blacklist_.empty()) return f;
+  std::vector<Cluster> clusters;
+  for (Viewpoint& v : f.viewpoints) v.cluster = -1;
+  for (const Cluster& c : frontier.clusters) {
+    Cluster kept = c;
+    kept.viewpoints.clear();
+    for (uint32_t i : c.viewpoints)
+      if (!blacklisted(frontier.viewpoints[i].position)) kept.viewpoints.push_back(i);
+    if (kept.viewpoints.empty()) continue;
+    for (uint32_t i : kept.viewpoints) f.viewpoints[i].cluster = static_cast<int32_t>(clusters.size());
+    clusters.push_back(std::move(kept));
+  }
+  f.clusters = std::move(clusters);
+  return f;
+}
+
+bool Explorer::fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d) {
+  const auto t0 = Clock::now();
+  const DistanceFn euclidean = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).norm(); };
+  const ClusterGraph graph(frontier, uav, euclidean, config_.graph);
+  d->timings.graph_ms = msSince(t0);
+  const auto t1 = Clock::now();
+  const TourPlan plan = planTour(graph, config_.tsp);
+  d->timings.tour_ms = msSince(t1);
+  d->full_recompute = true;
+  tour_.clear();
+  have_target_ = false;
+  path_.clear();
+  ++stats_.full_recomputes;
+  stats_.clusters = frontier.clusters.size();
+  if (plan.status != TourPlanStatus::kOk) {
+    d->message = std::string("tour: ") + toString(plan.status) + (plan.message.empty() ? "" : " " + plan.message);
+    return false;
+  }
+  tour_ = plan.configurations;
+  stats_.tour_cost = plan.cost;
+  return !tour_.empty();
+}
+
+bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d) {
+  const auto t0 = Clock::now();
+  const double r = config_.match_radius;
+  PointHash viewpoints(r);
+  for (size_t i = 0; i < frontier.viewpoints.size(); ++i)
+    if (wanted(frontier, i)) viewpoints.add(frontier.viewpoints[i].position, static_cast<int>(i));
+  // Tour viewpoints no wanted frontier viewpoint is near were covered.
+  std::vector<char> matched(frontier.viewpoints.size(), 0);
+  std::vector<Eigen::Vector4d> kept;
+  for (size_t k = 0; k < tour_.size(); ++k) {
+    bool near = false;
+    viewpoints.any(tour_[k].head<3>(), r, [&](int i) {
+      matched[i] = 1;
+      near = true;
+      return false;  // mark every match
+    });
+    if (near) {
+      kept.push_back(tour_[k]);
+    } else if (k == 0 && have_target_) {
+      have_target_ = false;
+      ++stats_.targets_covered;
+      d->reason = ReplanReason::kTargetCovered;
+    }
+  }
+  const bool removed = kept.size() != tour_.size();
+  tour_ = std::move(kept);
+  if (tour_.empty()) return false;
+  // Wanted frontier viewpoints near no tour viewpoint are new: cheapest insertion.
+  size_t inserted = 0;
+  for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
+    if (matched[i] || !wanted(frontier, i)) continue;
+    const Eigen::Vector4d q = configurationOf(frontier.viewpoints[i]);
+    const Eigen::Vector3d x = q.head<3>();
+    // Position p: before tour_[p]; tour_[0] stays first while it is the target.
+    size_t best = tour_.size();
+    double best_cost = (tour_.back().head<3>() - x).norm();
+    for (size_t p = have_target_ ? 1 : 0; p < tour_.size(); ++p) {
+      const Eigen::Vector3d a = p == 0 ? Eigen::Vector3d(uav.head<3>()) : Eigen::Vector3d(tour_[p - 1].head<3>());
+      const Eigen::Vector3d b = tour_[p].head<3>();
+      const double cost = (a - x).norm() + (x - b).norm() - (a - b).norm();
+      if (cost < best_cost) best_cost = cost, best = p;
+    }
+    tour_.insert(tour_.begin() + static_cast<long>(best), q);
+    ++inserted;
+  }
+  if (inserted > 0 && d->reason == ReplanReason::kNone) d->reason = ReplanReason::kNewIses;
+  if (inserted > 0 || removed) ++stats_.local_updates;
+  d->timings.tour_ms = msSince(t0);
+  return true;
+}
+
+bool Explorer::pathBlocked(const Eigen::Vector4d& uav) const {
+  if (map_ == nullptr || path_.size() < 2) return false;
+  size_t start = 0;
+  double closest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < path_.size(); ++i) {
+    const double dist = (path_[i].head<3>() - uav.head<3>()).norm();
+    if (dist < closest) closest = dist, start = i;
+  }
+  const double step = 0.5 * map_->cellSize();
+  for (size_t i = start == 0 ? 1 : start; i < path_.size(); ++i) {
+    const Eigen::Vector3d a = path_[i - 1].head<3>(), b = path_[i].head<3>();
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+    for (int s = 0; s <= n; ++s) {
+      const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(s) / n);
+      if ((p - uav.head<3>()).norm() < collision_radius_) continue;  // where the UAV already is
+      if (!map_->isFree(p, collision_radius_)) return true;
+    }
+  }
+  return false;
+}
+
+bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const {
+  const double h = 0.5 * map_->cellSize();
+  const int n = static_cast<int>(std::ceil(within / h));
+  const double clearance = collision_radius_ + map_->cellSize();
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = -n; k <= n; ++k)
+    for (int j = -n; j <= n; ++j)
+      for (int i = -n; i <= n; ++i) {
+        const Eigen::Vector3d c = p + h * Eigen::Vector3d(i, j, k);
+        const double d = (c - p).norm();
+        if (d <= within && d < best && map_->isFree(c, clearance)) best = d, q->head<3>() = c;
+      }
+  return std::isfinite(best);
+}
+
+void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
+  const auto t0 = Clock::now();
+  Eigen::Vector4d from = uav;
+  std::vector<Eigen::Vector4d> prefix;
+  // A start the planner refuses (closer to an obstacle than the radius, or in
+  // unknown space): leave by the shortest straight step to a free point.
+  if (map_ != nullptr && !map_->isFree(uav.head<3>(), collision_radius_ + 0.5 * map_->cellSize())) {
+    if (nearestFree(uav.head<3>(), 2.0, &from)) prefix.push_back(uav);
+  }
+  for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
+    const Eigen::Vector4d target = tour_.front();
+    PathResult leg = planner_.plan(from, target);
+    // The frontier's clearance test and the planner's (radius plus half a
+    // motion-check step) differ slightly: a target just inside the planner's
+    // margin is moved to the nearest point that passes, within reach_tolerance.
+    if (leg.status == PathStatus::kInvalidGoal && map_ != nullptr) {
+      Eigen::Vector4d moved = target;
+      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planner_.plan(from, moved);
+    }
+    d->path_status = leg.status;
+    if (std::getenv("NBV_DEBUG"))
+      std::fprintf(stderr, "  leg from %.2f %.2f %.2f (free %.2f) to %.2f %.2f %.2f (free %.2f): %s, roadmap %zu\n", from.x(),
+                   from.y(), from.z(), map_->distance(from.head<3>()), target.x(), target.y(), target.z(),
+                   map_->distance(target.head<3>()), toString(leg.status), planner_.roadmapVertices());
+    if (hasPath(leg.status)) {
+      path_ = prefix;
+      path_.insert(path_.end(), leg.path.begin(), leg.path.end());
+      have_target_ = true;
+      d->action = ExplorerAction::kFly;
+      d->path = path_;
+      d->target = target;
+      ++stats_.legs;
+      d->timings.path_ms = msSince(t0);
+      return;
+    }
+    if (leg.status == PathStatus::kInvalidStart) break;  // not the target's fault
+    countFailure(target.head<3>());
+    ++stats_.leg_failures;
+    tour_.erase(tour_.begin());
+  }
+  have_target_ = false;
+  path_.clear();
+  d->action = ExplorerAction::kHover;
+  if (d->reason == ReplanReason::kNone) d->reason = ReplanReason::kTargetUnreachable;
+  d->message = std::string("no path to a tour viewpoint (last: ") + toString(d->path_status) + ")";
+  d->timings.path_ms = msSince(t0);
+}
+
+ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
+  const auto t0 = Clock::now();
+  ExplorerDecision d;
+  if (leg_finished && have_target_ && !tour_.empty()) {
+    const Eigen::Vector4d target = tour_.front();
+    if ((uav.head<3>() - target.head<3>()).norm() <= config_.reach_tolerance) {
+      ++stats_.targets_reached;
+      Place& place = placeAt(target.head<3>());
+      if (++place.visits == config_.max_visits) blacklist_.push_back(place.position);
+      d.reason = ReplanReason::kTargetReached;
+    } else {
+      countFailure(target.head<3>());
+      ++stats_.leg_failures;
+      d.reason = ReplanReason::kTargetUnreachable;
+    }
+    tour_.erase(tour_.begin());
+    have_target_ = false;
+    path_.clear();
+  }
+  if (frontier.complete()) {
+    tour_.clear();
+    path_.clear();
+    have_target_ = false;
+    d.action = ExplorerAction::kDone;
+    d.reason = ReplanReason::kComplete;
+    d.message = "no ISE of C_ins remains (" + std::to_string(frontier.remaining) + " in C_rem)";
+    d.timings.total_ms = msSince(t0);
+    stats_.last = d.timings;
+    return d;
+  }
+  const Frontier f = withoutBlacklisted(frontier);
+  // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
+  // blacklisted (unreachable, or visited max_visits times without completing
+  // it) has no collision-free configuration that completes it, so it joins C_rem.
+  size_t open = 0;
+  for (const Ise& ise : f.ises) {
+    open += !ise.remaining && ise.viewpoint >= 0 && static_cast<size_t>(ise.viewpoint) < f.viewpoints.size() &&
+            f.viewpoints[ise.viewpoint].cluster >= 0;
+  }
+  if (open == 0 && !blacklist_.empty()) {
+    tour_.clear();
+    path_.clear();
+    have_target_ = false;
+    d.action = ExplorerAction::kDone;
+    d.reason = ReplanReason::kComplete;
+    d.message = "no ISE of C_ins remains (" + std::to_string(frontier.remaining) + " in C_rem, " +
+                std::to_string(frontier.insideCount()) + " more at " + std::to_string(blacklist_.size()) +
+                " blacklisted place(s))";
+    d.timings.total_ms = msSince(t0);
+    stats_.last = d.timings;
+    return d;
+  }
+  const bool initial = stats_.full_recomputes == 0;
+  bool have_tour = false;
+  if (!tour_.empty() && !config_.always_full) have_tour = localUpdate(f, uav, &d);
+  if (!have_tour) {
+    if (d.reason == ReplanReason::kNone || d.reason == ReplanReason::kTargetReached) {
+      d.reason = requested_ ? ReplanReason::kRequested : initial ? ReplanReason::kInitial : ReplanReason::kTourFinished;
+    }
+    requested_ = false;
+    have_tour = fullRecompute(f, uav, &d);
+  }
+  if (!have_tour) {
+    d.action = ExplorerAction::kDone;
+    d.reason = ReplanReason::kNoReachableTarget;
+    d.message = std::to_string(frontier.insideCount()) + " ISE(s) of C_ins remain but no viewpoint can be reached; " +
+                std::to_string(blacklist_.size()) + " place(s) blacklisted; " + d.message;
+  } else if (have_target_ && !pathBlocked(uav)) {
+    d.action = ExplorerAction::kContinue;
+  } else {
+    if (have_target_) {
+      ++stats_.paths_blocked;
+      d.reason = ReplanReason::kPathBlocked;
+    }
+    nextLeg(uav, &d);
+    // Every target failed: the tour is empty; one full recomputation more.
+    if (d.action == ExplorerAction::kHover && tour_.empty() && fullRecompute(withoutBlacklisted(frontier), uav, &d)) {
+      nextLeg(uav, &d);
+    }
+  }
+  stats_.tour_viewpoints = tour_.size();
+  d.timings.total_ms = msSince(t0);
+  stats_.last = d.timings;
+  return d;
+}
+
+ExplorerDecision Explorer::checkPath(const Eigen::Vector4d& uav) {
+  const auto t0 = Clock::now();
+  ExplorerDecision d;
+  if (have_target_ && pathBlocked(uav)) {
+    ++stats_.paths_blocked;
+    d.reason = ReplanReason::kPathBlocked;
+    nextLeg(uav, &d);
+  }
+  d.timings.total_ms = msSince(t0);
+  return d;
+}
+
+}  // namespace surface_nbv

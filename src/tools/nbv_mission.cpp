@@ -1,0 +1,312 @@
+// nbv_mission: the headless mission runner. Runs N seeded exploration trials
+// of a scene with the same core objects and the same YAML parameters as the
+// ROS launch (no ROS master), evaluates every reconstruction against the
+// scene's ground truth and writes the paper's Table 2 columns.
+//
+//   nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S]
+//               [--out DIR] [--threads N] [--max-flight-time S] [--no-plots]
+//
+// Per trial (DIR/trial_K/): reconstruction.ply, map.tsdf, path.csv (flown
+// poses), events.csv (every frontier update), eval/ (nbv_evaluate's report and
+// clouds) and PNG plots; in DIR: report.json and report.md over all trials.
+#include <sys/wait.h>
+#include <spawn.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "surface_nbv/eval/evaluator.h"
+#include "surface_nbv/eval/report_writer.h"
+#include "surface_nbv/eval/surface_sampler.h"
+#include "surface_nbv/map/map_io.h"
+#include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/mission/mission_runner.h"
+#include "surface_nbv/sim/mesh_io.h"
+#include "surface_nbv/util/cli_args.h"
+#include "surface_nbv/util/json_writer.h"
+
+extern char** environ;
+
+using namespace surface_nbv;
+
+namespace {
+
+const char* kUsage =
+    "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
+    "                   [--threads N] [--max-flight-time S] [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z]\n"
+    "                   [--crop-max X,Y,Z] [--no-plots]\n"
+    "  --config defaults to config/<scene name>.yaml of the package when it exists.\n";
+
+int fail(const std::string& message) {
+  std::cerr << "nbv_mission: " << message << "\n";
+  return 2;
+}
+
+struct TrialRow {
+  int trial = 0;
+  unsigned seed = 0;
+  bool completed = false;
+  std::string end_reason;
+  double path_length = 0, flight_min = 0, coverage = 0, mean = 0, std_dev = 0, rmse = 0, wall_s = 0;
+  double plan_ms_max = 0, frontier_ms_max = 0;
+  MissionStageTimes times;
+  size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
+};
+
+int run(const std::vector<std::string>& argv, bool quiet) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (quiet) posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", 0x1, 0);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  int status = 0;
+  if (spawned != 0 || waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+Status writeCsvs(const std::string& dir, const MissionResult& r) {
+  std::ofstream path(dir + "/path.csv");
+  path << "t_s,x_m,y_m,z_m,yaw_rad\n";
+  for (size_t i = 0; i < r.flown.size(); ++i) {
+    const Eigen::Vector4d& q = r.flown[i];
+    path << r.flown_t[i] << "," << q.x() << "," << q.y() << "," << q.z() << "," << q.w() << "\n";
+  }
+  std::ofstream events(dir + "/events.csv");
+  events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason\n";
+  for (const MissionEvent& e : r.events) {
+    events << e.t << "," << e.path_length << "," << e.ises << "," << e.inside << "," << e.remaining << ","
+           << e.viewpoints << "," << e.clusters << "," << e.tour << "," << e.observed << "," << e.action << ","
+           << e.reason << "\n";
+  }
+  if (!path || !events) return Status::Error("cannot write path.csv / events.csv in " + dir);
+  return Status::Ok();
+}
+
+void meanStd(const std::vector<double>& v, double* mean, double* sd) {
+  *mean = 0.0;
+  *sd = 0.0;
+  if (v.empty()) return;
+  for (double x : v) *mean += x / v.size();
+  for (double x : v) *sd += (x - *mean) * (x - *mean) / v.size();
+  *sd = std::sqrt(*sd);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> options = sceneOptionNames();
+  options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time"});
+  CliArgs args(options, {"help", "no-plots"});
+  if (Status s = args.parse(argc, argv); !s) return fail(s.message());
+  if (args.has("help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
+  MissionConfig config;
+  const std::string scene_arg = args.get("scene", "plant");
+  const std::string config_file = args.get("config", defaultConfigFile(NBV_SOURCE_DIR, scene_arg));
+  if (!config_file.empty()) {
+    if (Status s = loadMissionConfig(config_file, &config); !s) return fail(s.message());
+  }
+  if (Status s = sceneConfigFromArgs(args, &config.scene); !s) return fail(s.message());
+  int trials = 1, seed = 1;
+  const Status parsed[] = {args.getInt("trials", &trials), args.getInt("seed", &seed),
+                           args.getInt("threads", &config.threads),
+                           args.getDouble("max-flight-time", &config.max_flight_time)};
+  for (const Status& s : parsed)
+    if (!s) return fail(s.message());
+  if (trials < 1 || trials > 100 || seed < 0) return fail("--trials expects 1..100 and --seed >= 0");
+  if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
+  const std::string scene_name = std::filesystem::path(config.scene.scene).stem().string();
+  const std::string out_dir = args.get("out", "output/mission_" + scene_name);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) return fail("cannot create '" + out_dir + "': " + ec.message());
+
+  TriangleMesh mesh;
+  if (Status s = loadScene(config.scene, &mesh); !s) return fail(s.message());
+  std::unique_ptr<RaycastScene> scene;
+  if (Status s = RaycastScene::create(mesh, &scene); !s) return fail(s.message());
+  std::printf("scene '%s': %zu triangles, %.0f m^2; config %s; voxel %.2f m; %d trial(s) from seed %d\n",
+              config.scene.scene.c_str(), mesh.numTriangles(), mesh.area(),
+              config_file.empty() ? "(defaults)" : config_file.c_str(), config.tsdf.voxel_size, trials, seed);
+  // Probe points for the running coverage: 0.5 m apart on the true surface.
+  SurfaceCloud probe_cloud;
+  SurfaceSampler(0.5, 7, config.threads).sample(mesh, 2000000, &probe_cloud);
+  std::vector<Eigen::Vector3d> probe;
+  for (const Eigen::Vector3f& p : probe_cloud.points) probe.push_back(p.cast<double>());
+
+  EvalConfig eval_config;
+  eval_config.voxel_size = config.tsdf.voxel_size;
+  eval_config.min_range = config.camera.min_range;
+  eval_config.max_range = config.camera.max_range;
+  eval_config.collision_radius = config.path.collision_radius;
+  eval_config.threads = config.threads;
+  std::vector<TrialRow> rows;
+  for (int k = 0; k < trials; ++k) {
+    MissionConfig trial_config = config;
+    trial_config.seed = static_cast<unsigned>(seed + k);
+    const std::string dir = out_dir + "/trial_" + std::to_string(k);
+    std::filesystem::create_directories(dir, ec);
+    std::printf("trial %d (seed %u)\n", k, trial_config.seed);
+    std::fflush(stdout);
+    MissionRunner runner(trial_config, *scene);
+    runner.setProbePoints(probe);
+    runner.setProgress([](const MissionEvent& e) {
+      std::printf("  t %6.0f s  path %6.1f m  ISEs %6zu (C_ins %6zu)  clusters %4zu  tour %4zu  observed %5.1f %%\n",
+                  e.t, e.path_length, e.ises, e.inside, e.clusters, e.tour, 100.0 * e.observed);
+      std::fflush(stdout);
+    });
+    const MissionResult r = runner.run();
+    if (!r.status) return fail("trial " + std::to_string(k) + ": " + r.status.message());
+    MeshExtractor mesher;
+    mesher.update(runner.map());
+    const TriangleMesh reconstruction = mesher.mesh();
+    if (!reconstruction.empty()) {
+      if (Status s = saveMesh(reconstruction, dir + "/reconstruction.ply"); !s) return fail(s.message());
+    }
+    if (Status s = saveMap(runner.map(), dir + "/map.tsdf"); !s) return fail(s.message());
+    if (Status s = writeCsvs(dir, r); !s) return fail(s.message());
+    EvalResult eval;
+    if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
+    if (Status s = ReportWriter(eval, {dir + "/reconstruction.ply", config.scene.scene}).write(dir + "/eval"); !s) {
+      return fail(s.message());
+    }
+    TrialRow row;
+    row.trial = k;
+    row.seed = trial_config.seed;
+    row.completed = r.completed;
+    row.end_reason = r.end_reason;
+    row.path_length = r.path_length;
+    row.flight_min = r.flight_time / 60.0;
+    row.coverage = eval.coverage.coverage();
+    row.mean = eval.error_stats.mean;
+    row.std_dev = eval.error_stats.std_dev;
+    row.rmse = eval.error_stats.rmse;
+    row.wall_s = r.wall_time;
+    row.times = r.times;
+    row.frames = r.frames;
+    row.updates = r.frontier_updates;
+    row.full = r.explorer.full_recomputes;
+    row.local = r.explorer.local_updates;
+    row.legs = r.explorer.legs;
+    row.failures = r.explorer.leg_failures;
+    row.blacklisted = r.blacklisted;
+    row.final_inside = r.final_inside;
+    row.frontier_ms_max = r.max_frontier_ms;
+    row.plan_ms_max = r.max_plan_ms;
+    rows.push_back(row);
+    std::printf("  %s after %.1f min of flight, %.1f m: coverage %.2f %%, error mean %.2f cm, std %.2f cm, "
+                "RMSE %.2f cm; wall %.1f s (%.0fx faster than flight)\n  end: %s\n",
+                r.completed ? "completed" : "stopped", row.flight_min, row.path_length, 100.0 * row.coverage,
+                100.0 * row.mean, 100.0 * row.std_dev, 100.0 * row.rmse, row.wall_s,
+                r.flight_time / std::max(row.wall_s, 1e-9), r.end_reason.c_str());
+    std::fflush(stdout);
+    if (!args.has("no-plots")) {
+      const std::string script = std::string(NBV_SOURCE_DIR) + "/scripts/plot_mission.py";
+      if (run({"/usr/bin/python3", "-c", "import matplotlib"}, true) != 0) {
+        std::printf("  plots skipped: python3-matplotlib is not installed\n");
+      } else if (run({"/usr/bin/python3", script, dir}, false) != 0) {
+        std::printf("  plotting failed: /usr/bin/python3 %s %s\n", script.c_str(), dir.c_str());
+      }
+    }
+  }
+
+  // Summary over trials: Table 2 columns, mean and standard deviation.
+  auto column = [&rows](auto get) {
+    std::vector<double> v;
+    for (const TrialRow& r : rows) v.push_back(get(r));
+    return v;
+  };
+  struct Stat {
+    const char* name;
+    const char* unit;
+    double scale;
+    std::vector<double> values;
+  };
+  std::vector<Stat> stats = {
+      {"path_length", "m", 1.0, column([](const TrialRow& r) { return r.path_length; })},
+      {"completion_time", "min", 1.0, column([](const TrialRow& r) { return r.flight_min; })},
+      {"coverage", "%", 100.0, column([](const TrialRow& r) { return r.coverage; })},
+      {"error_mean", "cm", 100.0, column([](const TrialRow& r) { return r.mean; })},
+      {"error_std", "cm", 100.0, column([](const TrialRow& r) { return r.std_dev; })},
+      {"rmse", "cm", 100.0, column([](const TrialRow& r) { return r.rmse; })},
+      {"wall_time", "s", 1.0, column([](const TrialRow& r) { return r.wall_s; })},
+  };
+  JsonWriter json;
+  json.beginObject().value("scene", config.scene.scene).value("config", config_file).value("trials", trials);
+  json.value("seed", seed).value("voxel_size_m", config.tsdf.voxel_size).value("e_max_m", eval_config.eMax());
+  json.beginObject("summary");
+  for (Stat& s : stats) {
+    double m, sd;
+    meanStd(s.values, &m, &sd);
+    json.beginObject(s.name).value("unit", s.unit).value("mean", m * s.scale).value("std", sd * s.scale).endObject();
+  }
+  json.endObject().beginArray("per_trial");
+  for (const TrialRow& r : rows) {
+    json.beginObject().value("trial", r.trial).value("seed", static_cast<int>(r.seed)).value("completed", r.completed);
+    json.value("end_reason", r.end_reason).value("path_length_m", r.path_length).value("completion_min", r.flight_min);
+    json.value("coverage", r.coverage).value("error_mean_m", r.mean).value("error_std_m", r.std_dev);
+    json.value("rmse_m", r.rmse).value("wall_s", r.wall_s).value("frames", r.frames).value("frontier_updates", r.updates);
+    json.value("full_recomputes", r.full).value("local_updates", r.local).value("legs", r.legs);
+    json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
+    json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
+    json.beginObject("stage_ms").value("render", r.times.render).value("integrate", r.times.integrate);
+    json.value("collision", r.times.collision).value("frontier", r.times.frontier).value("graph", r.times.graph);
+    json.value("tour", r.times.tour).value("path", r.times.path).value("tracker", r.times.tracker).endObject();
+    json.endObject();
+  }
+  json.endArray().endObject();
+  std::ofstream(out_dir + "/report.json") << json.str();
+
+  std::ofstream md(out_dir + "/report.md");
+  md << "# Mission on `" << config.scene.scene << "` (" << trials << " trial(s), seeds " << seed << ".."
+     << seed + trials - 1 << ")\n\nConfig: `" << config_file << "`, voxel " << config.tsdf.voxel_size
+     << " m, e_max " << 100.0 * eval_config.eMax() << " cm.\n\n"
+     << "| trial | seed | completed | path [m] | time [min] | coverage [%] | mean [cm] | std [cm] | RMSE [cm] | "
+        "wall [s] | frontier updates | full / local | legs / failures | blacklisted |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  char line[512];
+  for (const TrialRow& r : rows) {
+    std::snprintf(line, sizeof(line), "| %d | %u | %s | %.1f | %.1f | %.2f | %.2f | %.2f | %.2f | %.1f | %zu | %zu / %zu | %zu / %zu | %zu |\n",
+                  r.trial, r.seed, r.completed ? "yes" : "no", r.path_length, r.flight_min, 100.0 * r.coverage,
+                  100.0 * r.mean, 100.0 * r.std_dev, 100.0 * r.rmse, r.wall_s, r.updates, r.full, r.local, r.legs,
+                  r.failures, r.blacklisted);
+    md << line;
+  }
+  md << "\n| criterion | mean | std |\n|---|---|---|\n";
+  for (Stat& s : stats) {
+    double m, sd;
+    meanStd(s.values, &m, &sd);
+    std::snprintf(line, sizeof(line), "| %s [%s] | %.2f | %.2f |\n", s.name, s.unit, m * s.scale, sd * s.scale);
+    md << line;
+  }
+  md << "\nWall-clock milliseconds by stage, per trial: render / integrate / collision map / frontier / graph / "
+        "tour / legs / tracker.\n\n";
+  for (const TrialRow& r : rows) {
+    std::snprintf(line, sizeof(line), "- trial %d: %.0f / %.0f / %.0f / %.0f / %.0f / %.0f / %.0f / %.0f (slowest "
+                  "frontier update %.0f ms, slowest decision %.0f ms); end: %s\n",
+                  r.trial, r.times.render, r.times.integrate, r.times.collision, r.times.frontier, r.times.graph,
+                  r.times.tour, r.times.path, r.times.tracker, r.frontier_ms_max, r.plan_ms_max, r.end_reason.c_str());
+    md << line;
+  }
+  std::printf("summary over %d trial(s):\n", trials);
+  for (Stat& s : stats) {
+    double m, sd;
+    meanStd(s.values, &m, &sd);
+    std::printf("  %-16s %10.2f +- %.2f %s\n", s.name, m * s.scale, sd * s.scale, s.unit);
+  }
+  std::printf("wrote %s/report.json and report.md (per trial: trial_K/)\n", out_dir.c_str());
+  size_t completed = 0;
+  for (const TrialRow& r : rows) completed += r.completed ? 1 : 0;
+  return completed == rows.size() ? 0 : 1;
+}

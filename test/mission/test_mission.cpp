@@ -1,0 +1,100 @@
+// The headless mission: its YAML reader and a whole mission on the box scene.
+#include "surface_nbv/mission/mission_runner.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "surface_nbv/eval/evaluator.h"
+#include "surface_nbv/eval/surface_sampler.h"
+#include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/sim/procedural_scenes.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(MissionConfig, ReadsTheSharedPlantParameters) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());
+  EXPECT_DOUBLE_EQ(c.tsdf.voxel_size, 0.3);
+  EXPECT_DOUBLE_EQ(c.camera.min_range, 1.6);
+  EXPECT_DOUBLE_EQ(c.camera.max_range, 8.0);
+  EXPECT_DOUBLE_EQ(c.surface.delta_pose, 4.7);
+  EXPECT_DOUBLE_EQ(c.surface.camera.max_range, 8.0);
+  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_tc, 0.3);
+  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_ic, 0.03);
+  EXPECT_EQ(c.scene.scene, "plant");
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+}
+
+TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
+  MissionConfig c;
+  Status s = loadMissionConfig(writeTemp("typo.yaml", "mission:\n  sped: 0.5\n"), &c);
+  EXPECT_NE(s.message().find("mission/sped is not a known key"), std::string::npos) << s.message();
+  s = loadMissionConfig(writeTemp("type.yaml", "nbv:\n  voxel_size: [1, 2]\n"), &c);
+  EXPECT_NE(s.message().find("nbv/voxel_size has the wrong type"), std::string::npos) << s.message();
+  s = loadMissionConfig(writeTemp("start.yaml", "mission:\n  start: [1, 2, 3]\n"), &c);
+  EXPECT_NE(s.message().find("mission/start expected [x, y, z, yaw]"), std::string::npos) << s.message();
+  s = loadMissionConfig("/nonexistent/mission.yaml", &c);
+  EXPECT_NE(s.message().find("cannot read"), std::string::npos) << s.message();
+  c = MissionConfig();
+  c.start = Eigen::Vector4d(100, 0, 2, 0);
+  EXPECT_NE(c.validate().message().find("mission/start"), std::string::npos);
+}
+
+// A whole mission on the 4 m box: it must end by itself (no ISE of C_ins
+// left) with the box's surface observed, and repeat exactly.
+TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &c).ok());
+  c.progress_period = 30.0;
+  TriangleMesh mesh;
+  ASSERT_TRUE(loadScene(c.scene, &mesh).ok());
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  SurfaceCloud cloud;
+  ASSERT_TRUE(SurfaceSampler(0.2, 3).sample(mesh, 100000, &cloud).ok());
+  std::vector<Eigen::Vector3d> probe;
+  for (const Eigen::Vector3f& p : cloud.points)
+    if (p.z() > 0.05) probe.push_back(p.cast<double>());  // the ground under the box is never seen
+  MissionRunner runner(c, *scene);
+  runner.setProbePoints(probe);
+  const MissionResult r = runner.run();
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_TRUE(r.completed) << r.end_reason;
+  ASSERT_FALSE(r.events.empty());
+  const double observed = r.events.back().observed;
+  std::printf("box mission: %.1f s of flight, %.1f m, %zu frames, %zu updates, observed %.1f %%, wall %.1f s\n",
+              r.flight_time, r.path_length, r.frames, r.frontier_updates, 100.0 * observed, r.wall_time);
+  EXPECT_GT(observed, 0.5);
+  // The real figure: nbv_evaluate's coverage of the reconstructed mesh.
+  MeshExtractor mesher;
+  mesher.update(runner.map());
+  EvalConfig eval;
+  eval.voxel_size = c.tsdf.voxel_size;
+  eval.min_range = c.camera.min_range;
+  eval.max_range = c.camera.max_range;
+  eval.threads = 2;
+  EvalResult e;
+  ASSERT_TRUE(Evaluator(eval).evaluate(mesh, mesher.mesh(), &e).ok());
+  std::printf("box mission coverage %.2f %%, RMSE %.2f cm\n", 100.0 * e.coverage.coverage(), 100.0 * e.error_stats.rmse);
+  EXPECT_GT(e.coverage.coverage(), 0.95);
+  EXPECT_LT(e.error_stats.rmse, c.tsdf.voxel_size);
+  EXPECT_GT(r.path_length, 5.0);
+  EXPECT_LT(r.flight_time, c.max_flight_time);
+
+  MissionRunner again(c, *scene);
+  const MissionResult r2 = again.run();
+  ASSERT_EQ(r2.flown.size(), r.flown.size());
+  for (size_t i = 0; i < r.flown.size(); ++i) ASSERT_EQ(r2.flown[i], r.flown[i]) << "frame " << i;
+}
+
+}  // namespace

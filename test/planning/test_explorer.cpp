@@ -1,0 +1,240 @@
+// The Fig. 1 replanning loop: full recomputation, local updates, legs,
+// blacklisting, path checks and the stop reasons.
+#include "surface_nbv/planning/explorer.h"
+
+#include <gtest/gtest.h>
+
+#include "planning_test_worlds.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+// A frontier whose clusters are given as lists of viewpoint positions; one
+// ISE per viewpoint, every ISE inside C_ins, every gain positive.
+Frontier makeFrontier(const std::vector<std::vector<Eigen::Vector3d>>& clusters) {
+  Frontier f;
+  for (const auto& positions : clusters) {
+    Cluster c;
+    for (const Eigen::Vector3d& p : positions) {
+      Ise ise;
+      ise.position = p + Eigen::Vector3d(1.0, 0.0, 0.0);
+      ise.viewpoint = static_cast<int32_t>(f.viewpoints.size());
+      f.ises.push_back(ise);
+      Viewpoint v;
+      v.position = p;
+      v.cluster = static_cast<int32_t>(f.clusters.size());
+      v.visible = {static_cast<uint32_t>(f.ises.size() - 1)};
+      c.viewpoints.push_back(static_cast<uint32_t>(f.viewpoints.size()));
+      f.viewpoints.push_back(v);
+    }
+    c.visible_ises = positions.size();
+    c.gain = 0.1 * positions.size();
+    f.clusters.push_back(c);
+  }
+  return f;
+}
+
+PathPlannerConfig pathConfig() {
+  PathPlannerConfig c;
+  c.time_budget = 10.0;
+  c.iteration_budget = 2000;
+  c.seed = 3;
+  return c;
+}
+
+void expectFree(const CollisionMap& map, const std::vector<Eigen::Vector4d>& path) {
+  ASSERT_GE(path.size(), 2u);
+  for (size_t i = 1; i < path.size(); ++i) {
+    const Eigen::Vector3d a = path[i - 1].head<3>(), b = path[i].head<3>();
+    for (int s = 0; s <= 20; ++s) {
+      const Eigen::Vector3d p = a + (b - a) * (s / 20.0);
+      ASSERT_GT(map.distance(p), 0.9) << "segment " << i << " at " << p.transpose();
+    }
+  }
+}
+
+const Eigen::Vector4d kUav(-4.0, -3.0, 2.5, 0.0);
+
+TEST(Explorer, CompleteFrontierEndsTheMission) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  Frontier f;
+  Ise rem;
+  rem.remaining = true;
+  f.ises.push_back(rem);
+  f.remaining = 1;
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  EXPECT_EQ(d.action, ExplorerAction::kDone);
+  EXPECT_EQ(d.reason, ReplanReason::kComplete);
+  EXPECT_NE(d.message.find("1 in C_rem"), std::string::npos) << d.message;
+}
+
+TEST(Explorer, FirstFrontierPlansTheTourAndAFreeLegToItsFirstViewpoint) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  // Near cluster on this side of the wall, far cluster behind it.
+  const Frontier f = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  EXPECT_EQ(d.reason, ReplanReason::kInitial);
+  EXPECT_TRUE(d.full_recompute);
+  EXPECT_EQ(explorer.tour().size(), 4u);
+  // The nearer cluster comes first (eq. 5 discounts distance).
+  EXPECT_NEAR(d.target.x(), -3.0, 1e-9);
+  EXPECT_NEAR((d.path.front().head<3>() - kUav.head<3>()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((d.path.back() - d.target).norm(), 0.0, 1e-6);
+  expectFree(world.collision(), d.path);
+  EXPECT_EQ(explorer.stats().full_recomputes, 1u);
+}
+
+TEST(Explorer, LocalUpdateDropsCoveredViewpointsAndInsertsNewOnes) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision first =
+      explorer.update(makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}}}), kUav, false);
+  ASSERT_EQ(first.action, ExplorerAction::kFly);
+  const Eigen::Vector4d target = first.target;
+  // The far cluster was covered; a new viewpoint appeared next to the UAV's way.
+  const Frontier second = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{-2, 4, 2.5}}});
+  const ExplorerDecision d = explorer.update(second, kUav, false);
+  EXPECT_EQ(d.action, ExplorerAction::kContinue) << toString(d.action) << " " << d.message;
+  EXPECT_EQ(d.reason, ReplanReason::kNewIses);
+  EXPECT_FALSE(d.full_recompute);
+  EXPECT_EQ(explorer.stats().local_updates, 1u);
+  EXPECT_EQ(explorer.stats().full_recomputes, 1u);
+  ASSERT_EQ(explorer.tour().size(), 3u);
+  EXPECT_EQ(explorer.tour().front(), target);  // the current target stays first
+  for (const Eigen::Vector4d& q : explorer.tour()) EXPECT_LT(q.x(), 0.0) << "covered viewpoint kept";
+}
+
+TEST(Explorer, CoveredTargetGivesALegToTheNextViewpoint) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision first = explorer.update(makeFrontier({{{-3, 2, 2.5}}, {{-3, -4.5, 2.5}}}), kUav, false);
+  ASSERT_EQ(first.action, ExplorerAction::kFly);
+  const Eigen::Vector3d covered = first.target.head<3>();
+  const Eigen::Vector3d other = covered.y() > 0 ? Eigen::Vector3d(-3, -4.5, 2.5) : Eigen::Vector3d(-3, 2, 2.5);
+  const ExplorerDecision d = explorer.update(makeFrontier({{other}}), kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly);
+  EXPECT_EQ(d.reason, ReplanReason::kTargetCovered);
+  EXPECT_NEAR((d.target.head<3>() - other).norm(), 0.0, 1e-9);
+  EXPECT_EQ(explorer.stats().targets_covered, 1u);
+}
+
+TEST(Explorer, ReachedTargetsAdvanceAndRevisitsAreBlacklisted) {
+  WallWorld world(true);
+  ExplorerConfig config;
+  config.max_visits = 2;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const Frontier f = makeFrontier({{{-3, 2, 2.5}}});
+  ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly);
+  // Arrive; the frontier still offers the same viewpoint (its ISE was not seen).
+  d = explorer.update(f, d.target, true);
+  EXPECT_EQ(explorer.stats().targets_reached, 1u);
+  EXPECT_EQ(d.reason, ReplanReason::kTourFinished);  // its only viewpoint was visited: full recomputation
+  ASSERT_EQ(d.action, ExplorerAction::kFly);
+  d = explorer.update(f, d.target, true);
+  EXPECT_EQ(explorer.stats().targets_reached, 2u);
+  ASSERT_EQ(explorer.blacklist().size(), 1u);
+  // Its ISE joins C_rem (nothing completes it from there): the mission is complete.
+  EXPECT_EQ(d.action, ExplorerAction::kDone);
+  EXPECT_EQ(d.reason, ReplanReason::kComplete);
+  EXPECT_NE(d.message.find("1 more at 1 blacklisted place(s)"), std::string::npos) << d.message;
+}
+
+TEST(Explorer, UnreachableViewpointIsBlacklistedAfterMaxFailures) {
+  WallWorld world(false);  // the wall is closed: the other side cannot be reached
+  ExplorerConfig config;
+  config.max_failures = 2;
+  PathPlannerConfig path = pathConfig();
+  path.iteration_budget = 300;
+  Explorer explorer(config, path);
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const Frontier f = makeFrontier({{{4, -3, 2.5}}});
+  ExplorerDecision d = explorer.update(f, kUav, false);
+  size_t updates = 1;
+  while (d.action != ExplorerAction::kDone && updates < 10) {
+    EXPECT_NE(d.action, ExplorerAction::kFly);
+    d = explorer.update(f, kUav, false);
+    ++updates;
+  }
+  EXPECT_EQ(d.action, ExplorerAction::kDone);
+  EXPECT_EQ(d.reason, ReplanReason::kComplete);
+  EXPECT_NE(d.message.find("blacklisted"), std::string::npos) << d.message;
+  EXPECT_LE(updates, 3u) << "retried too long";
+  ASSERT_EQ(explorer.blacklist().size(), 1u);
+  EXPECT_NEAR((explorer.blacklist()[0] - Eigen::Vector3d(4, -3, 2.5)).norm(), 0.0, 1e-9);
+  EXPECT_EQ(explorer.stats().leg_failures, 2u);
+}
+
+TEST(Explorer, ObstacleOnTheLegGivesANewFreeLeg) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const Eigen::Vector4d uav(-4.0, 3.0, 2.5, 0.0);
+  const ExplorerDecision first = explorer.update(makeFrontier({{{4.5, 0, 2.5}}}), uav, false);
+  ASSERT_EQ(first.action, ExplorerAction::kFly);
+  EXPECT_EQ(explorer.checkPath(uav).action, ExplorerAction::kContinue);
+  // A pillar appears on the leg, in the open beyond the wall.
+  Eigen::Vector3d on_leg = Eigen::Vector3d::Constant(NAN);
+  for (size_t i = 1; i < first.path.size() && !on_leg.allFinite(); ++i)
+    for (int s = 0; s <= 50; ++s) {
+      const Eigen::Vector3d p = first.path[i - 1].head<3>() + (first.path[i] - first.path[i - 1]).head<3>() * (s / 50.0);
+      if (p.x() >= 1.8 && p.x() <= 2.6) {
+        on_leg = p;
+        break;
+      }
+    }
+  ASSERT_TRUE(on_leg.allFinite());
+  world.addBox(Eigen::Vector3d(on_leg.x() - 0.4, on_leg.y() - 0.4, 0.0),
+               Eigen::Vector3d(on_leg.x() + 0.4, on_leg.y() + 0.4, 5.0));
+  explorer.mapChanged();
+  const ExplorerDecision d = explorer.checkPath(uav);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  EXPECT_EQ(d.reason, ReplanReason::kPathBlocked);
+  expectFree(world.collision(), d.path);
+  EXPECT_EQ(explorer.stats().paths_blocked, 1u);
+}
+
+TEST(Explorer, SameInputsGiveTheSamePlan) {
+  auto plan = [] {
+    WallWorld world(true);
+    Explorer explorer(ExplorerConfig(), pathConfig());
+    EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    return explorer.update(makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}}, {{4, 4, 2.5}}}), kUav, false);
+  };
+  const ExplorerDecision a = plan(), b = plan();
+  ASSERT_EQ(a.path.size(), b.path.size());
+  for (size_t i = 0; i < a.path.size(); ++i) EXPECT_EQ(a.path[i], b.path[i]);
+}
+
+TEST(Explorer, ClustersWithoutGainLeaveNothingReachable) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  Frontier f = makeFrontier({{{-3, 2, 2.5}}});
+  f.clusters[0].gain = 0.0;
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  EXPECT_EQ(d.action, ExplorerAction::kDone);
+  EXPECT_EQ(d.reason, ReplanReason::kNoReachableTarget);
+  EXPECT_NE(d.message.find("1 ISE(s) of C_ins remain"), std::string::npos) << d.message;
+}
+
+TEST(Explorer, ConfigRefusesBadValues) {
+  ExplorerConfig c;
+  EXPECT_TRUE(c.validate().ok());
+  c.max_failures = 0;
+  EXPECT_NE(c.validate().message().find("max_failures"), std::string::npos);
+  c = ExplorerConfig();
+  c.match_radius = std::nan("");
+  EXPECT_NE(c.validate().message().find("match_radius"), std::string::npos);
+}
+
+}  // namespace
