@@ -48,6 +48,7 @@ void toFrontierMsg(const Frontier& frontier, const std_msgs::Header& header, sur
     out.pose.orientation.w = std::cos(0.5 * v.yaw);
     out.pose.orientation.z = std::sin(0.5 * v.yaw);
     out.visible_ises.assign(v.visible.begin(), v.visible.end());
+    out.sources.assign(v.sources.begin(), v.sources.end());
     msg->viewpoints.push_back(out);
   }
   msg->clusters.clear();

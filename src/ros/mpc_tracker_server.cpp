@@ -43,6 +43,14 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   r.get("q_yaw", &c->sim.mpc.q_yaw);
   r.get("r_acceleration", &c->sim.mpc.r_acceleration);
   r.get("jerk_max", &c->sim.mpc.jerk_max);
+  // The mission's take-off pose, mission/start = [x, y, z, yaw] (the key
+  // nbv_mission reads), unless ~initial_position / ~initial_yaw are given.
+  std::vector<double> start;
+  if (ros::param::get("/mission/start", start)) {
+    if (start.size() != 4) return Status::Error("/mission/start expected [x, y, z, yaw]");
+    c->initial.p_W = Eigen::Vector3d(start[0], start[1], start[2]);
+    c->initial.yaw = start[3];
+  }
   r.get("initial_position", &c->initial.p_W);
   r.get("initial_yaw", &c->initial.yaw);
   r.get("world_frame", &c->world_frame);
@@ -69,6 +77,11 @@ Status fromTrajectoryMsg(const trajectory_msgs::MultiDOFJointTrajectory& msg, do
     }
     const geometry_msgs::Transform& tf = in.transforms[0];
     const geometry_msgs::Quaternion& q = tf.rotation;
+    const double norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!(std::abs(norm - 1.0) <= 1e-3)) {
+      return Status::Error("point " + std::to_string(i) + " has a rotation of norm " + std::to_string(norm) +
+                           ", expected a unit quaternion");
+    }
     TrajectoryPoint p;
     p.t = start + in.time_from_start.toSec();
     p.p_W = Eigen::Vector3d(tf.translation.x, tf.translation.y, tf.translation.z);

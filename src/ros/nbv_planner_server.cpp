@@ -6,7 +6,12 @@
 #include <cstdio>
 
 #include <nav_msgs/Path.h>
-#include <std_msgs/String.h>
+#include <filesystem>
+#include <fstream>
+
+#include "surface_nbv/FilePath.h"
+#include "surface_nbv/PlannerStatus.h"
+#include "surface_nbv/util/json_writer.h"
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -39,12 +44,13 @@ geometry_msgs::Quaternion yawQuaternion(double yaw) {
 }
 
 visualization_msgs::Marker lineStrip(const std_msgs::Header& header, const std::string& ns,
-                                     const std::vector<Eigen::Vector4d>& points, float r, float g, float b) {
+                                     const std::vector<Eigen::Vector4d>& points, float r, float g, float b,
+                                     int type = visualization_msgs::Marker::LINE_STRIP) {
   visualization_msgs::Marker m;
   m.header = header;
   m.ns = ns;
   m.id = 0;
-  m.type = visualization_msgs::Marker::LINE_STRIP;
+  m.type = points.empty() ? visualization_msgs::Marker::LINE_STRIP : type;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
   m.scale.x = 0.1;
@@ -85,6 +91,11 @@ Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* fronti
       if (k >= msg.ises.size()) return Status::Error("viewpoint " + std::to_string(i) + " sees ISE out of range");
     }
     v.visible.assign(in.visible_ises.begin(), in.visible_ises.end());
+    for (uint32_t k : in.sources) {
+      if (k >= msg.ises.size()) return Status::Error("viewpoint " + std::to_string(i) + " source ISE out of range");
+      frontier->ises[k].viewpoint = static_cast<int32_t>(i);
+    }
+    v.sources.assign(in.sources.begin(), in.sources.end());
   }
   frontier->clusters.resize(msg.clusters.size());
   for (size_t c = 0; c < msg.clusters.size(); ++c) {
@@ -136,25 +147,36 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       config_(config),
       stats_(nh_, "planner/stats", "nbv_planner", config.stats_period),
       feed_(nh_, config.map, config.collision, config.snapshot_service, "nbv_planner", &stats_),
-      planner_(config.path) {
-  if (Status s = planner_.setMap(&feed_.collision(), config_.map.bounds); !s) {
-    ROS_ERROR("nbv_planner: path planner refused the map: %s", s.message().c_str());
+      explorer_(config.explorer, config.path) {
+  if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
+    ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
   }
   state_ = config_.start_running ? State::kRunning : State::kStopped;
   frontier_sub_ = nh_.subscribe("surface/frontier", 2, &NbvPlannerServer::onFrontier, this);
   odometry_sub_ = nh_.subscribe("odometry", 20, &NbvPlannerServer::onOdometry, this);
   trajectory_pub_ = nh_.advertise<trajectory_msgs::MultiDOFJointTrajectory>("planner/trajectory", 1, true);
   path_pub_ = nh_.advertise<nav_msgs::Path>("planner/path", 1, true);
-  status_pub_ = nh_.advertise<std_msgs::String>("planner/status", 1, true);
+  status_pub_ = nh_.advertise<surface_nbv::PlannerStatus>("planner/status", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("planner/markers", 1, true);
   start_srv_ = priv.advertiseService("start", &NbvPlannerServer::onStart, this);
   stop_srv_ = priv.advertiseService("stop", &NbvPlannerServer::onStop, this);
   replan_srv_ = priv.advertiseService("replan", &NbvPlannerServer::onReplan, this);
   timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / config_.replan_rate), &NbvPlannerServer::onTimer, this);
-  ROS_INFO("nbv_planner: %s, replan %.1f Hz, speed %.2f m/s, collision radius %.1f m, lambda_tc %.3f, lambda_ic %.3f",
-           stateName(), config_.replan_rate, config_.speed, config_.path.collision_radius, config_.graph.lambda_tc,
-           config_.graph.lambda_ic);
-  publishStatus("waiting");
+  ROS_INFO("nbv_planner: %s, tick %.1f Hz, speed %.2f m/s, collision radius %.1f m, lambda_tc %.3f, lambda_ic %.3f",
+           stateName(), config_.replan_rate, config_.speed, config_.path.collision_radius,
+           config_.explorer.graph.lambda_tc, config_.explorer.graph.lambda_ic);
+  message_ = "waiting";
+  publishStatus();
+}
+
+const char* NbvPlannerServer::stateName() const {
+  switch (state_) {
+    case State::kStopped: return "STOPPED";
+    case State::kRunning: return "RUNNING";
+    case State::kHovering: return "HOVERING";
+    case State::kDone: return "DONE";
+  }
+  return "UNKNOWN";
 }
 
 void NbvPlannerServer::onFrontier(const surface_nbv::SurfaceFrontierConstPtr& msg) {
@@ -176,8 +198,7 @@ void NbvPlannerServer::onFrontier(const surface_nbv::SurfaceFrontierConstPtr& ms
   }
   frontier_ = std::move(frontier);
   frontier_time_ = msg->header.stamp;
-  have_frontier_ = true;
-  plan_pending_ = true;
+  have_frontier_ = frontier_new_ = true;
   stats_.count("frontiers");
 }
 
@@ -197,84 +218,158 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
                       config_.world_frame.c_str());
     return;
   }
-  uav_ = Eigen::Vector4d(pose.position.x, pose.position.y, pose.position.z, yawOf(pose.orientation));
+  const Eigen::Vector4d uav(pose.position.x, pose.position.y, pose.position.z, yawOf(pose.orientation));
+  if (have_odometry_) {
+    path_length_ += (uav.head<3>() - uav_.head<3>()).norm();
+  } else {
+    first_odometry_time_ = msg->header.stamp;
+  }
+  uav_ = uav;
   odometry_time_ = msg->header.stamp;
   have_odometry_ = true;
 }
 
 void NbvPlannerServer::onTimer(const ros::WallTimerEvent&) {
-  if (state_ != State::kRunning || !plan_pending_) return;
-  if (!feed_.mirror().synced() || !have_odometry_ || !have_frontier_) {
-    publishStatus(!feed_.mirror().synced() ? "waiting for the map" : !have_odometry_ ? "waiting for odometry"
-                                                                                : "waiting for a frontier");
+  if (state_ == State::kStopped || state_ == State::kDone) return;
+  const ros::Time now = ros::Time::now();
+  if (!have_odometry_ || !feed_.mirror().synced()) {
+    message_ = !have_odometry_ ? "waiting for odometry" : "waiting for the map";
+    publishStatus();
     return;
   }
-  plan_pending_ = false;
-  if (feed_.refresh() != MapFeed::Refresh::kUnchanged) planner_.mapChanged();
-  plan();
-}
-
-void NbvPlannerServer::plan() {
-  const auto t0 = std::chrono::steady_clock::now();
-  const DistanceFn euclidean = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).norm(); };
-  const ClusterGraph graph(frontier_, uav_, euclidean, config_.graph);
-  const TourPlan tour = planTour(graph);
-  last_clusters_ = frontier_.clusters.size();
-  auto elapsedMs = [&t0] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  };
-  if (tour.status != TourPlanStatus::kOk || tour.configurations.empty()) {
-    last_ms_ = elapsedMs();
-    stats_.count(std::string("tour_") + toString(tour.status));
-    ROS_WARN_THROTTLE(5.0, "nbv_planner: no tour (%s) %s", toString(tour.status), tour.message.c_str());
-    publishStatus(std::string("tour failed: ") + toString(tour.status));
-    return;
-  }
-  last_cost_ = tour.cost;
-
-  // Legs: UAV -> the first configuration a path reaches, then on to the next
-  // ones while their paths succeed, at most max_legs in all.
-  std::vector<Eigen::Vector4d> path{uav_};
-  std::vector<Eigen::Vector4d> reached{uav_};
-  PathStatus first_failure = PathStatus::kExactSolution;
-  for (const Eigen::Vector4d& goal : tour.configurations) {
-    if (static_cast<int>(reached.size()) > config_.max_legs) break;
-    const PathResult leg = planner_.plan(reached.back(), goal);
-    if (!hasPath(leg.status)) {
-      stats_.count(std::string("path_") + toString(leg.status));
-      if (reached.size() > 1) break;
-      if (first_failure == PathStatus::kExactSolution) first_failure = leg.status;
-      continue;
+  if ((now - odometry_time_).toSec() > config_.odometry_timeout) {
+    if (state_ != State::kHovering || reason_ != "odometry_stale") {
+      reason_ = "odometry_stale";
+      hold("no odometry for " + std::to_string((now - odometry_time_).toSec()) + " s");
     }
-    path.insert(path.end(), leg.path.begin() + (leg.path.empty() ? 0 : 1), leg.path.end());
-    reached.push_back(goal);
-  }
-  last_ms_ = elapsedMs();
-  stats_.recordMs(last_ms_);
-  if (reached.size() == 1) {
-    ROS_WARN_THROTTLE(5.0, "nbv_planner: no path to any tour configuration (first failure %s)",
-                      toString(first_failure));
-    publishStatus(std::string("path failed: ") + toString(first_failure));
     return;
   }
-  stats_.count("plans");
-  publishTrajectory(resamplePath(path, config_.trajectory_spacing), odometry_time_);
-  std_msgs::Header header;
-  header.stamp = odometry_time_;
-  header.frame_id = config_.world_frame;
-  visualization_msgs::MarkerArray markers;
-  std::vector<Eigen::Vector4d> tour_line{uav_};
-  tour_line.insert(tour_line.end(), tour.configurations.begin(), tour.configurations.end());
-  markers.markers.push_back(lineStrip(header, "tour", tour_line, 1.0f, 0.6f, 0.0f));
-  markers.markers.push_back(lineStrip(header, "path", path, 0.0f, 0.8f, 0.2f));
-  markers_pub_.publish(markers);
-  publishStatus("planned " + std::to_string(reached.size() - 1) + " leg(s), " +
-                std::to_string(tour.viewpoints.size()) + " tour viewpoints");
+  if (!feed_.stamp().isZero() && (now - feed_.stamp()).toSec() > config_.map_timeout) {
+    if (state_ != State::kHovering || reason_ != "map_stale") {
+      reason_ = "map_stale";
+      hold("no map update for " + std::to_string((now - feed_.stamp()).toSec()) + " s");
+    }
+    return;
+  }
+  if (!spun_) {  // take-off: look around once before the first plan
+    spun_ = true;
+    std::vector<Eigen::Vector4d> spin{uav_};
+    const int steps = std::max(1, static_cast<int>(std::ceil(config_.start_spin / (0.5 * M_PI))));
+    for (int k = 1; k <= steps && config_.start_spin > 0.0; ++k) {
+      spin.emplace_back(uav_.x(), uav_.y(), uav_.z(), uav_.w() + config_.start_spin * k / steps);
+    }
+    if (spin.size() > 1) {
+      leg_end_ = now + ros::Duration(publishTrajectory(spin));
+      have_leg_ = leg_is_spin_ = true;
+      reason_ = "take_off_spin";
+      message_ = "turning in place before the first plan";
+      publishStatus();
+      return;
+    }
+  }
+  const bool leg_ended = have_leg_ && now >= leg_end_ + ros::Duration(config_.leg_settle);
+  if (leg_ended && leg_is_spin_) have_leg_ = leg_is_spin_ = false;
+  if (leg_is_spin_) return;
+  const bool recovering = state_ == State::kHovering && (reason_ == "odometry_stale" || reason_ == "map_stale");
+  if (!have_frontier_ || (!frontier_new_ && !leg_ended && !recovering)) {
+    // Between frontiers: is the current leg still free?
+    if (have_leg_ && feed_.refresh() != MapFeed::Refresh::kUnchanged) {
+      explorer_.mapChanged();
+      const ExplorerDecision d = explorer_.checkPath(uav_);
+      if (d.action != ExplorerAction::kContinue) act(d);
+    }
+    return;
+  }
+  frontier_new_ = false;
+  if (feed_.refresh() != MapFeed::Refresh::kUnchanged) explorer_.mapChanged();
+  const ExplorerDecision d = explorer_.update(frontier_, uav_, leg_ended && explorer_.hasTarget());
+  if (leg_ended) have_leg_ = false;
+  stats_.recordMs(d.timings.total_ms);
+  act(d);
 }
 
-void NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points, const ros::Time& stamp) {
+void NbvPlannerServer::act(const ExplorerDecision& d) {
+  last_timings_ = d.timings;
+  if (d.reason != ReplanReason::kNone) reason_ = toString(d.reason);
+  message_ = d.message;
+  stats_.count(std::string("decision_") + toString(d.action));
+  switch (d.action) {
+    case ExplorerAction::kContinue:
+      if (state_ == State::kHovering) state_ = State::kRunning;
+      break;
+    case ExplorerAction::kFly: {
+      std::vector<Eigen::Vector4d> points{uav_};
+      points.insert(points.end(), d.path.begin(), d.path.end());
+      leg_end_ = ros::Time::now() + ros::Duration(publishTrajectory(resamplePath(points, config_.trajectory_spacing)));
+      have_leg_ = true;
+      state_ = State::kRunning;
+      break;
+    }
+    case ExplorerAction::kHover:
+      hold(d.message);
+      return;
+    case ExplorerAction::kDone:
+      finish(d);
+      return;
+  }
+  publishStatus();
+  publishMarkers();
+}
+
+void NbvPlannerServer::hold(const std::string& why) {
+  if (have_odometry_) publishTrajectory({uav_});
+  have_leg_ = leg_is_spin_ = false;
+  if (state_ == State::kRunning || state_ == State::kHovering) state_ = State::kHovering;
+  message_ = why;
+  ROS_WARN_THROTTLE(5.0, "nbv_planner: holding the current pose: %s", why.c_str());
+  publishStatus();
+}
+
+void NbvPlannerServer::finish(const ExplorerDecision& d) {
+  if (have_odometry_) publishTrajectory({uav_});
+  have_leg_ = false;
+  state_ = State::kDone;
+  ROS_INFO("nbv_planner: mission over after %.1f s of flight and %.1f m: %s %s",
+           (odometry_time_ - first_odometry_time_).toSec(), path_length_, toString(d.reason), d.message.c_str());
+  writeReport();
+  for (const auto& [service, file] : {std::make_pair(config_.save_map_service, std::string("mission.tsdf")),
+                                      std::make_pair(config_.export_mesh_service, std::string("mission.ply"))}) {
+    if (service.empty()) continue;
+    surface_nbv::FilePath call;
+    call.request.path = file;
+    if (!ros::service::call(service, call) || call.response.code != 0) {
+      ROS_WARN("nbv_planner: %s(%s) failed: %s", service.c_str(), file.c_str(), call.response.message.c_str());
+    }
+  }
+  publishStatus();
+  publishMarkers();
+  if (config_.exit_when_done) {
+    ROS_INFO("nbv_planner: exit_when_done: shutting down");
+    ros::WallDuration(0.5).sleep();  // let the latched status and hold trajectory go out
+    ros::shutdown();
+  }
+}
+
+void NbvPlannerServer::writeReport() const {
+  if (config_.report_directory.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(config_.report_directory, ec);
+  const ExplorerStats& s = explorer_.stats();
+  JsonWriter json;
+  json.beginObject().value("state", stateName()).value("reason", reason_).value("message", message_);
+  json.value("flight_time_s", (odometry_time_ - first_odometry_time_).toSec()).value("path_length_m", path_length_);
+  json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
+  json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
+  json.value("leg_failures", s.leg_failures).value("blacklisted", explorer_.blacklist().size()).endObject();
+  const std::string path = config_.report_directory + "/mission_report.json";
+  std::ofstream out(path);
+  out << json.str();
+  if (!out) ROS_WARN("nbv_planner: cannot write %s", path.c_str());
+}
+
+double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points) {
   trajectory_msgs::MultiDOFJointTrajectory trajectory;
-  trajectory.header.stamp = stamp;
+  trajectory.header.stamp = ros::Time::now();
   trajectory.header.frame_id = config_.world_frame;
   trajectory.joint_names = {"base_link"};
   nav_msgs::Path path;
@@ -282,11 +377,16 @@ void NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& poi
   double t = 0.0;
   for (size_t i = 0; i < points.size(); ++i) {
     const Eigen::Vector4d& p = points[i];
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
     if (i > 0) {
       const Eigen::Vector4d& a = points[i - 1];
       const double dt = std::max((p.head<3>() - a.head<3>()).norm() / config_.speed,
                                  std::abs(wrapAngle(p.w() - a.w())) / config_.yaw_rate);
       t += std::max(dt, 1e-3);
+    }
+    if (i + 1 < points.size()) {
+      const Eigen::Vector3d step = points[i + 1].head<3>() - p.head<3>();
+      if (step.norm() > 1e-9) v = config_.speed * step.normalized();
     }
     trajectory_msgs::MultiDOFJointTrajectoryPoint point;
     geometry_msgs::Transform tf;
@@ -295,6 +395,11 @@ void NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& poi
     tf.translation.z = p.z();
     tf.rotation = yawQuaternion(p.w());
     point.transforms.push_back(tf);
+    geometry_msgs::Twist twist;
+    twist.linear.x = v.x();
+    twist.linear.y = v.y();
+    twist.linear.z = v.z();
+    point.velocities.push_back(twist);
     point.time_from_start = ros::Duration(t);
     trajectory.points.push_back(point);
     geometry_msgs::PoseStamped pose;
@@ -305,44 +410,106 @@ void NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& poi
   }
   trajectory_pub_.publish(trajectory);
   path_pub_.publish(path);
+  return t;
 }
 
-void NbvPlannerServer::publishStatus(const std::string& result) {
-  char line[256];
-  std::snprintf(line, sizeof(line), "state=%s ises=%zu clusters=%zu tour_cost=%.3f planning_ms=%.1f result=",
-                stateName(), frontier_.ises.size(), last_clusters_, last_cost_, last_ms_);
-  std_msgs::String msg;
-  msg.data = line + result;
+void NbvPlannerServer::publishStatus() {
+  surface_nbv::PlannerStatus msg;
+  msg.header.stamp = ros::Time::now();
+  msg.header.frame_id = config_.world_frame;
+  msg.state = stateName();
+  msg.reason = reason_;
+  msg.message = message_;
+  msg.ises = frontier_.ises.size();
+  msg.ises_inside = frontier_.insideCount();
+  msg.ises_remaining = frontier_.remaining;
+  msg.clusters = frontier_.clusters.size();
+  const ExplorerStats& s = explorer_.stats();
+  msg.tour_viewpoints = explorer_.tour().size();
+  msg.tour_cost = s.tour_cost;
+  msg.path_length = path_length_;
+  msg.flight_time = have_odometry_ ? (odometry_time_ - first_odometry_time_).toSec() : 0.0;
+  msg.blacklisted = explorer_.blacklist().size();
+  msg.full_recomputes = s.full_recomputes;
+  msg.local_updates = s.local_updates;
+  msg.legs = s.legs;
+  msg.leg_failures = s.leg_failures;
+  msg.graph_ms = last_timings_.graph_ms;
+  msg.tour_ms = last_timings_.tour_ms;
+  msg.path_ms = last_timings_.path_ms;
+  msg.total_ms = last_timings_.total_ms;
   status_pub_.publish(msg);
 }
 
+void NbvPlannerServer::publishMarkers() {
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = config_.world_frame;
+  visualization_msgs::MarkerArray markers;
+  std::vector<Eigen::Vector4d> tour{uav_};
+  tour.insert(tour.end(), explorer_.tour().begin(), explorer_.tour().end());
+  markers.markers.push_back(lineStrip(header, "tour", tour, 1.0f, 0.6f, 0.0f));
+  markers.markers.push_back(lineStrip(header, "leg", explorer_.currentPath(), 0.0f, 0.8f, 0.2f));
+  std::vector<Eigen::Vector4d> target;
+  if (explorer_.hasTarget() && !explorer_.tour().empty()) target.push_back(explorer_.tour().front());
+  visualization_msgs::Marker t = lineStrip(header, "target", target, 1.0f, 0.0f, 1.0f,
+                                           visualization_msgs::Marker::SPHERE_LIST);
+  t.scale.x = t.scale.y = t.scale.z = 0.6;
+  markers.markers.push_back(t);
+  std::vector<Eigen::Vector4d> black;
+  for (const Eigen::Vector3d& b : explorer_.blacklist()) black.emplace_back(b.x(), b.y(), b.z(), 0.0);
+  visualization_msgs::Marker bl = lineStrip(header, "blacklisted", black, 0.1f, 0.1f, 0.1f,
+                                            visualization_msgs::Marker::SPHERE_LIST);
+  bl.scale.x = bl.scale.y = bl.scale.z = 0.4;
+  markers.markers.push_back(bl);
+  markers_pub_.publish(markers);
+}
+
 bool NbvPlannerServer::onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  const bool was_running = state_ == State::kRunning;
-  state_ = State::kRunning;
-  plan_pending_ = have_frontier_ || plan_pending_;
+  const State before = state_;
   res.success = true;
-  res.message = was_running ? "already running" : "running";
-  publishStatus(res.message);
+  if (before == State::kRunning || before == State::kHovering) {
+    res.message = std::string("already ") + stateName();
+    return true;
+  }
+  if (before == State::kDone) {
+    explorer_.reset();
+    res.message = "running a new mission on the current map";
+  } else {
+    res.message = "running";
+  }
+  state_ = State::kRunning;
+  frontier_new_ = have_frontier_;
+  reason_ = "started";
+  message_ = res.message;
+  publishStatus();
   return true;
 }
 
 bool NbvPlannerServer::onStop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  state_ = State::kStopped;
+  const bool was_done = state_ == State::kDone;
+  state_ = was_done ? State::kDone : State::kStopped;
   res.success = true;
   if (have_odometry_) {
-    publishTrajectory({uav_}, odometry_time_);
-    res.message = "stopped; holding the current pose";
+    publishTrajectory({uav_});
+    res.message = was_done ? "mission already over; holding the current pose" : "stopped; holding the current pose";
   } else {
     res.message = "stopped; no odometry yet, no hold trajectory sent";
   }
-  publishStatus(res.message);
+  have_leg_ = leg_is_spin_ = false;
+  explorer_.replan();
+  message_ = res.message;
+  publishStatus();
   return true;
 }
 
 bool NbvPlannerServer::onReplan(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  plan_pending_ = true;
+  explorer_.replan();
+  frontier_new_ = have_frontier_;
   res.success = true;
-  res.message = state_ == State::kRunning ? "replanning at the next tick" : "replan queued until ~start";
+  res.message = state_ == State::kRunning || state_ == State::kHovering ? "recomputing the tour at the next tick"
+                                                                         : std::string("tour recomputed once ") +
+                                                                               stateName() + " ends (~start)";
   return true;
 }
 

@@ -8,7 +8,7 @@ namespace surface_nbv {
 
 Status PlannerNodeConfig::validate() const {
   if (Status s = map.validate(); !s) return s;
-  if (Status s = graph.validate(); !s) return s;
+  if (Status s = explorer.validate(); !s) return s;
   if (Status s = path.validate(); !s) return s;
   if (Status s = collision.validate(); !s) return s;
   if (path.collision_radius >= collision.max_distance) {
@@ -25,7 +25,10 @@ Status PlannerNodeConfig::validate() const {
   if (!std::isfinite(trajectory_spacing) || trajectory_spacing <= 0.0) {
     return Status::Error("trajectory_spacing expected > 0");
   }
-  if (max_legs < 1) return Status::Error("max_legs expected >= 1");
+  if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("start_spin expected in [0, 20] rad");
+  if (!(leg_settle >= 0.0) || leg_settle > 60.0) return Status::Error("leg_settle expected in [0, 60] s");
+  if (!(odometry_timeout > 0.0) || !std::isfinite(odometry_timeout)) return Status::Error("odometry_timeout expected > 0");
+  if (!(map_timeout > 0.0) || !std::isfinite(map_timeout)) return Status::Error("map_timeout expected > 0");
   if (snapshot_service.empty()) return Status::Error("snapshot_service expected a service name");
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   return Status::Ok();
@@ -39,7 +42,21 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("speed", &c->speed);
   reader.get("yaw_rate", &c->yaw_rate);
   reader.get("trajectory_spacing", &c->trajectory_spacing);
-  reader.get("max_legs", &c->max_legs);
+  reader.get("start_spin", &c->start_spin);
+  reader.get("leg_settle", &c->leg_settle);
+  reader.get("odometry_timeout", &c->odometry_timeout);
+  reader.get("map_timeout", &c->map_timeout);
+  reader.get("report_directory", &c->report_directory);
+  reader.get("exit_when_done", &c->exit_when_done);
+  reader.get("save_map_service", &c->save_map_service);
+  reader.get("export_mesh_service", &c->export_mesh_service);
+  reader.get("iteration_budget", &c->path.iteration_budget);
+  reader.get("match_radius", &c->explorer.match_radius);
+  reader.get("reach_tolerance", &c->explorer.reach_tolerance);
+  reader.get("max_failures", &c->explorer.max_failures);
+  reader.get("max_visits", &c->explorer.max_visits);
+  reader.get("blacklist_radius", &c->explorer.blacklist_radius);
+  reader.get("always_full", &c->explorer.always_full);
   reader.get("start_running", &c->start_running);
   reader.get("collision_radius", &c->path.collision_radius);
   reader.get("time_budget", &c->path.time_budget);
@@ -56,8 +73,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
   readSharedMapConfig(&shared, &c->map);
-  shared.get("lambda_tc", &c->graph.lambda_tc);
-  shared.get("lambda_ic", &c->graph.lambda_ic);
+  shared.get("lambda_tc", &c->explorer.graph.lambda_tc);
+  shared.get("lambda_ic", &c->explorer.graph.lambda_ic);
   if (Status st = shared.status(); !st) return st;
   if (Status st = c->validate(); !st) return Status::Error(priv.getNamespace() + "/" + st.message());
   return Status::Ok();

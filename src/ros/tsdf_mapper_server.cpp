@@ -64,23 +64,18 @@ void TsdfMapperServer::drop(const std::string& reason, const std::string& detail
 }
 
 void TsdfMapperServer::onCameraInfo(const sensor_msgs::CameraInfoConstPtr& msg) {
-  const double fx = msg->K[0], fy = msg->K[4], cx = msg->K[2], cy = msg->K[5];
-  const bool ok = std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy) && fx > 0 &&
-                  fy > 0 && msg->width > 0 && msg->height > 0 && msg->width <= 16384 && msg->height <= 16384;
-  if (!ok) {
+  DepthCamera camera(config_.camera);
+  if (Status s = fromCameraInfoMsg(*msg, config_.camera, &camera); !s) {
     stats_.count("dropped_bad_camera_info");
-    ROS_WARN_THROTTLE(5.0, "tsdf_mapper: camera_info refused (size %ux%u, K = [%g %g %g %g])", msg->width,
-                      msg->height, fx, fy, cx, cy);
+    ROS_WARN_THROTTLE(5.0, "tsdf_mapper: %s", s.message().c_str());
     return;
   }
-  if (camera_ && camera_->width() == static_cast<int>(msg->width) && camera_->height() == static_cast<int>(msg->height) &&
-      camera_->fx() == fx && camera_->fy() == fy && camera_->cx() == cx && camera_->cy() == cy) {
+  if (camera_ && camera_->width() == camera.width() && camera_->height() == camera.height() &&
+      camera_->fx() == camera.fx() && camera_->fy() == camera.fy() && camera_->cx() == camera.cx() &&
+      camera_->cy() == camera.cy()) {
     return;
   }
-  CameraConfig c = config_.camera;
-  c.width = static_cast<int>(msg->width);
-  c.height = static_cast<int>(msg->height);
-  camera_ = std::make_shared<DepthCamera>(c, fx, fy, cx, cy);
+  camera_ = std::make_shared<DepthCamera>(camera);
 }
 
 void TsdfMapperServer::onImage(const sensor_msgs::ImageConstPtr& msg) {
@@ -152,6 +147,17 @@ void TsdfMapperServer::processPending() {
 }
 
 void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
+  if (!start_cleared_ && config_.start_free_radius > 0.0) {
+    // The space the UAV occupies at the first frame is free (closer than min range, unseen).
+    start_cleared_ = true;
+    size_t n = 0;
+    if (Status s = integrator_.markFree(T_W_S.translation(), config_.start_free_radius, &n); !s) {
+      ROS_WARN("tsdf_mapper: start_free_radius: %s", s.message().c_str());
+    } else {
+      ROS_INFO("tsdf_mapper: %zu unknown voxels within %.1f m of the first sensor pose marked free", n,
+               config_.start_free_radius);
+    }
+  }
   const auto t0 = std::chrono::steady_clock::now();
   IntegrationStats s;
   const Status status = f.camera ? integrator_.integrateDepth(*f.camera, f.depth, T_W_S, &s)

@@ -12,10 +12,10 @@
 
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
-#include <std_msgs/String.h>
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 
+#include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/TsdfUpdate.h"
 #include "surface_nbv/map/collision_map.h"
@@ -208,6 +208,76 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
   ASSERT_EQ(last_hold.points.size(), 1u);
   const auto& hold = last_hold.points[0].transforms.at(0).translation;
   EXPECT_NEAR((Eigen::Vector3d(hold.x, hold.y, hold.z) - uav).norm(), 0.0, 1e-6);
+}
+
+// Runs after TrajectoryIsFreeInsideTheBoundsAndTimed (the planner is STOPPED,
+// the map and a frontier are latched): every service in every state, hovering
+// on stale odometry, DONE on a complete frontier, a new mission after DONE.
+TEST(NbvPlanner, ServicesAnswerInEveryStateStaleOdometryHoversCompleteFrontierEnds) {
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  PlannerStatus status;
+  ros::Subscriber status_sub =
+      nh.subscribe<PlannerStatus>("planner/status", 10, [&](const PlannerStatusConstPtr& m) {
+        std::lock_guard<std::mutex> l(mutex);
+        status = *m;
+      });
+  ros::Publisher frontier_pub = nh.advertise<SurfaceFrontier>("surface/frontier", 1, true);
+  ros::Publisher odometry_pub = nh.advertise<nav_msgs::Odometry>("odometry", 10);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  nav_msgs::Odometry odometry;
+  odometry.header.frame_id = "world";
+  odometry.pose.pose.position.x = -4.0;
+  odometry.pose.pose.position.y = -3.0;
+  odometry.pose.pose.position.z = 2.5;
+  odometry.pose.pose.orientation.w = 1.0;
+  auto waitFor = [&](const std::string& state, bool feed_odometry, double seconds) {
+    for (int i = 0; i < seconds * 20; ++i) {
+      if (feed_odometry) {
+        odometry.header.stamp = ros::Time::now();
+        odometry_pub.publish(odometry);
+      }
+      ros::WallDuration(0.05).sleep();
+      std::lock_guard<std::mutex> l(mutex);
+      if (status.state == state) return true;
+    }
+    return false;
+  };
+  const std::vector<std::string> services{"nbv_planner/start", "nbv_planner/stop", "nbv_planner/replan"};
+  std::string message;
+  // STOPPED: every service answers.
+  ASSERT_TRUE(waitFor("STOPPED", false, 5.0)) << status.state;
+  EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;
+  EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;
+  // RUNNING, then odometry stops: HOVERING with the reason.
+  EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+  ASSERT_TRUE(waitFor("RUNNING", true, 5.0)) << status.state;
+  ASSERT_TRUE(waitFor("HOVERING", false, 5.0)) << status.state << " " << status.reason;
+  EXPECT_EQ(status.reason, "odometry_stale");
+  EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;
+  EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+  EXPECT_NE(message.find("already HOVERING"), std::string::npos) << message;
+  // Odometry comes back: RUNNING again.
+  ASSERT_TRUE(waitFor("RUNNING", true, 5.0)) << status.state << " " << status.reason;
+  // A frontier with no ISE of C_ins: DONE, with the reason.
+  SurfaceFrontier complete = makeFrontier();
+  complete.header.stamp = ros::Time::now();
+  complete.viewpoints.clear();
+  complete.clusters.clear();
+  for (uint32_t i = 0; i < complete.ises.size(); ++i) complete.remaining.push_back(i);
+  frontier_pub.publish(complete);
+  ASSERT_TRUE(waitFor("DONE", true, 10.0)) << status.state << " " << status.reason;
+  EXPECT_EQ(status.reason, "complete");
+  EXPECT_EQ(status.ises_remaining, complete.ises.size());
+  EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;
+  EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;
+  EXPECT_NE(message.find("mission already over"), std::string::npos) << message;
+  // ~start after DONE: a new mission on the current map.
+  EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+  EXPECT_NE(message.find("new mission"), std::string::npos) << message;
+  EXPECT_TRUE(waitFor("RUNNING", true, 5.0) || status.state == "DONE") << status.state;
+  for (const std::string& s : services) EXPECT_TRUE(call(s, &message)) << s << ": " << message;
 }
 
 int main(int argc, char** argv) {

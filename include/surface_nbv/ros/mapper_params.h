@@ -24,6 +24,7 @@ struct MapperConfig {
   std::string map_directory = "/tmp/surface_nbv_maps";
   int max_pending_frames = 10;    // frames waiting for their transform
   double tf_wait = 0.5;           // s a frame may wait for its transform
+  double start_free_radius = 0.0; // m: unknown voxels this close to the first sensor pose become free (0 = off)
 
   Status validate() const;
 };

@@ -38,7 +38,8 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* config)
 
 // Converts a trajectory message to absolute times on the simulated clock
 // (header.stamp + time_from_start; a zero stamp means `now`). Points need one
-// transform each; velocities are used when given.
+// transform each, its rotation a unit quaternion (norm within 1e-3: an unset,
+// all-zero one is refused); velocities are used when given.
 Status fromTrajectoryMsg(const trajectory_msgs::MultiDOFJointTrajectory& msg, double now, Trajectory* trajectory);
 
 class MpcTrackerServer {

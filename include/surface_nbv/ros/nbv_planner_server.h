@@ -1,23 +1,28 @@
-// The nbv_planner node: keeps a MapMirror of tsdf/update (asking the mapper
-// for a snapshot on a gap) and a CollisionMap over it, the last
-// surface/frontier and the last odometry. While RUNNING, at replan_rate and
-// only when a frontier arrived since the last plan (or ~replan asked), it
-// builds the cluster graph (eq. 4, 5), solves the tour, plans the PRM path
-// from the UAV through the first max_legs configurations of the tour and
-// publishes planner/trajectory, planner/path, planner/markers and
-// planner/status. A failed tour or path publishes no trajectory or path: only
-// planner/status, naming the TourPlanStatus or PathStatus.
+// The nbv_planner node: the paper's Fig. 1 loop (planning/explorer.h) on
+// ROS topics. It keeps a MapMirror of tsdf/update (asking the mapper for a
+// snapshot on a gap) with a CollisionMap, the last surface/frontier and the
+// last odometry, and on each tick (replan_rate, wall clock) while RUNNING:
+//   - turns start_spin in place once at the first start (to see around),
+//   - hands a new frontier, or the end of the current leg (its last point's
+//     time plus leg_settle, ROS time), to Explorer::update and acts on the
+//     decision: a new leg -> planner/trajectory (MultiDOFJointTrajectory at
+//     `speed`, yaw timed by `yaw_rate`) and planner/path; hover -> a hold
+//     trajectory at the current pose (HOVERING); done -> hold, DONE, the
+//     mission report, the map and mesh saved through the mapper's services,
+//   - between frontiers, re-checks the current leg against the updated map
+//     (Explorer::checkPath) and re-plans it when blocked,
+//   - hovers when odometry is older than odometry_timeout or the map has not
+//     been updated for map_timeout (both ROS time), and resumes when they come back.
+// planner/status (surface_nbv/PlannerStatus, latched) says the state, the
+// last reason, ISE counts, tour, flown length and stage timings;
+// planner/markers shows the tour, the current leg, the next target and the
+// blacklisted places.
 //
-// Distance oracle of the cluster graph: the straight-line distance, for speed
-// (the graph costs O(nodes * viewpoints) oracle calls, a PRM query each would
-// cost seconds per plan); the PRM is used for the path that is flown.
-//
-// Services (std_srvs/Trigger, valid in any state, always answer success with
-// a message): ~start (RUNNING, plans at the next tick if a frontier is held),
-// ~stop (STOPPED, publishes a hold trajectory at the current pose),
-// ~replan (plans at the next tick even without a new frontier).
-// Inputs that are stale (older stamp than the last accepted one) or malformed
-// are dropped and counted on planner/stats.
+// Services (std_srvs/Trigger, valid in any state, always answer): ~start
+// (RUNNING; after DONE it starts a new mission on the current map), ~stop
+// (STOPPED, holding the current pose), ~replan (the next tick recomputes the
+// whole tour). Inputs that are stale (older stamp than the last accepted one),
+// in the wrong frame or malformed are dropped and counted on planner/stats.
 #pragma once
 
 #include <memory>
@@ -29,8 +34,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "surface_nbv/SurfaceFrontier.h"
-#include "surface_nbv/planning/cluster_graph.h"
-#include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
@@ -51,7 +55,7 @@ std::vector<Eigen::Vector4d> resamplePath(const std::vector<Eigen::Vector4d>& pa
 
 class NbvPlannerServer {
  public:
-  enum class State { kStopped, kRunning };
+  enum class State { kStopped, kRunning, kHovering, kDone };
 
   NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, const PlannerNodeConfig& config);
 
@@ -63,17 +67,22 @@ class NbvPlannerServer {
   bool onStop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onReplan(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
 
-  // One planning round; publishes the result or a failure status.
-  void plan();
-  void publishTrajectory(const std::vector<Eigen::Vector4d>& points, const ros::Time& stamp);
-  void publishStatus(const std::string& result);
-  const char* stateName() const { return state_ == State::kRunning ? "RUNNING" : "STOPPED"; }
+  void act(const ExplorerDecision& d);
+  // Holds the current pose; HOVERING (or keeps STOPPED / DONE) with `why`.
+  void hold(const std::string& why);
+  void finish(const ExplorerDecision& d);
+  // Publishes the points as a trajectory from now; returns its duration [s].
+  double publishTrajectory(const std::vector<Eigen::Vector4d>& points);
+  void publishStatus();
+  void publishMarkers();
+  void writeReport() const;
+  const char* stateName() const;
 
   ros::NodeHandle nh_;
   PlannerNodeConfig config_;
   StatsReporter stats_;
   MapFeed feed_;
-  PathPlanner planner_;
+  Explorer explorer_;
   ros::Subscriber frontier_sub_, odometry_sub_;
   ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;
   ros::ServiceServer start_srv_, stop_srv_, replan_srv_;
@@ -81,15 +90,18 @@ class NbvPlannerServer {
 
   State state_ = State::kStopped;
   Frontier frontier_;
-  bool have_frontier_ = false;
-  bool plan_pending_ = false;
+  bool have_frontier_ = false, frontier_new_ = false;
   ros::Time frontier_time_;
   Eigen::Vector4d uav_ = Eigen::Vector4d::Zero();  // x, y, z, yaw
   bool have_odometry_ = false;
-  ros::Time odometry_time_;
-  size_t last_clusters_ = 0;
-  double last_cost_ = 0.0;
-  double last_ms_ = 0.0;
+  ros::Time odometry_time_, first_odometry_time_;
+  double path_length_ = 0.0;
+  bool spun_ = false;              // the take-off spin was sent
+  bool have_leg_ = false;          // a trajectory is being flown
+  bool leg_is_spin_ = false;
+  ros::Time leg_end_;
+  std::string reason_ = "none", message_;
+  ExplorerTimings last_timings_;
 };
 
 }  // namespace surface_nbv

@@ -9,6 +9,7 @@
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/cluster_graph.h"
+#include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/ros/param_reader.h"
 
@@ -17,16 +18,23 @@ namespace surface_nbv {
 struct PlannerNodeConfig {
   std::string shared_namespace = "/nbv";
   TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
-  ClusterGraphConfig graph;       // lambda_tc, lambda_ic
+  ExplorerConfig explorer;        // graph.lambda_tc, graph.lambda_ic from the shared namespace; the rest ~
   PathPlannerConfig path;         // collision_radius, time_budget, seed of the PRM
   CollisionConfig collision;
   std::string world_frame = "world";
-  double replan_rate = 1.0;       // Hz: planning ticks; a tick plans only on a new frontier (or ~replan)
+  double replan_rate = 2.0;       // Hz: ticks; a tick decides on a new frontier, an ended leg or ~replan
   double speed = 0.5;             // m/s: reference speed of planner/trajectory
   double yaw_rate = 0.5;          // rad/s: reference yaw rate (turns in place are timed by it)
   double trajectory_spacing = 0.5;  // m between trajectory points along the path
-  int max_legs = 3;               // tour configurations chained into one trajectory
   bool start_running = false;     // true: RUNNING from the start, else waits for ~start
+  double start_spin = 6.2832;     // rad turned in place at the first start, before the first plan
+  double leg_settle = 0.5;        // s after a leg's last point before the leg counts as ended
+  double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
+  double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
+  std::string report_directory;   // where DONE writes mission_report.json; empty = nowhere
+  bool exit_when_done = false;    // shut the node down once DONE (with required="true" the launch ends)
+  std::string save_map_service;   // called with "mission.tsdf" when DONE; empty = not called
+  std::string export_mesh_service;  // called with "mission.ply" when DONE; empty = not called
   std::string snapshot_service = "tsdf_mapper/request_snapshot";
   double stats_period = 1.0;
 

@@ -82,6 +82,7 @@ class TsdfMapperServer {
   uint64_t published_stamp_ = 0;  // map change counter at the last tsdf/update
   uint64_t meshed_stamp_ = 0;
   bool snapshot_requested_ = true;
+  bool start_cleared_ = false;  // start_free_radius applied
 };
 
 }  // namespace surface_nbv

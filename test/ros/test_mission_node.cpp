@@ -1,0 +1,73 @@
+// The whole ROS mission on the box (mission.test): waits for planner/status
+// DONE, then evaluates the mesh the planner had the mapper export.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include <ros/ros.h>
+
+#include "surface_nbv/PlannerStatus.h"
+#include "surface_nbv/eval/evaluator.h"
+#include "surface_nbv/sim/mesh_io.h"
+#include "surface_nbv/sim/scene_source.h"
+
+using namespace surface_nbv;
+
+TEST(Mission, BoxMissionEndsByItselfWithTheBoxCovered) {
+  ros::NodeHandle nh, priv("~");
+  std::string out_dir;
+  ASSERT_TRUE(priv.getParam("out_dir", out_dir));
+  std::filesystem::remove(out_dir + "/mission.ply");
+  std::mutex mutex;
+  PlannerStatus status;
+  size_t running = 0;
+  ros::Subscriber sub = nh.subscribe<PlannerStatus>("planner/status", 10, [&](const PlannerStatusConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex);
+    status = *m;
+    running += m->state == "RUNNING" ? 1 : 0;
+  });
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(380.0);
+  bool done = false;
+  while (!done && ros::WallTime::now() < deadline) {
+    ros::WallDuration(0.5).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    done = status.state == "DONE";
+  }
+  std::lock_guard<std::mutex> l(mutex);
+  ASSERT_TRUE(done) << "no DONE within the time limit; last state " << status.state << " (" << status.reason << ": "
+                    << status.message << ")";
+  EXPECT_GT(running, 0u);
+  EXPECT_EQ(status.reason, "complete") << status.message;
+  EXPECT_GT(status.path_length, 5.0);
+  std::printf("mission: %.1f s of flight, %.1f m, %u legs, %u full / %u local updates, %u blacklisted: %s\n",
+              status.flight_time, status.path_length, status.legs, status.full_recomputes, status.local_updates,
+              status.blacklisted, status.message.c_str());
+  // The planner asked the mapper to export the mesh: evaluate it.
+  for (int i = 0; i < 20 && !std::filesystem::exists(out_dir + "/mission.ply"); ++i) ros::WallDuration(0.5).sleep();
+  ASSERT_TRUE(std::filesystem::exists(out_dir + "/mission_report.json"));
+  TriangleMesh box, reconstruction;
+  SceneConfig scene;
+  scene.scene = "box";
+  ASSERT_TRUE(loadScene(scene, &box).ok());
+  ASSERT_TRUE(loadMesh(out_dir + "/mission.ply", MeshLoadOptions(), &reconstruction).ok());
+  EvalConfig eval;
+  eval.voxel_size = 0.1;
+  eval.min_range = 0.5;
+  eval.max_range = 8.0;
+  eval.threads = 2;
+  EvalResult result;
+  ASSERT_TRUE(Evaluator(eval).evaluate(box, reconstruction, &result).ok());
+  std::printf("coverage %.2f %%, RMSE %.2f cm\n", 100.0 * result.coverage.coverage(), 100.0 * result.error_stats.rmse);
+  EXPECT_GE(result.coverage.coverage(), 0.95);
+  EXPECT_LT(result.error_stats.rmse, 0.1);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_mission_node");
+  return RUN_ALL_TESTS();
+}
