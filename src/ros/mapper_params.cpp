@@ -20,6 +20,7 @@ Status MapperConfig::validate() const {
   if (map_directory.empty()) return Status::Error("map_directory expected a directory");
   if (max_pending_frames < 1 || max_pending_frames > 1000) return Status::Error("max_pending_frames expected in [1, 1000]");
   if (!std::isfinite(tf_wait) || tf_wait < 0.0 || tf_wait > 10.0) return Status::Error("tf_wait expected in [0, 10] s");
+  if (!(autosave_period >= 0.0) || !std::isfinite(autosave_period)) return Status::Error("autosave_period expected >= 0 s");
   if (!(start_free_radius >= 0.0) || start_free_radius > 10.0) {
     return Status::Error("start_free_radius expected in [0, 10] m");
   }
@@ -59,6 +60,8 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   // Shared with nbv_mission: mission/start_free_radius, unless ~start_free_radius is given.
   ros::param::get("/mission/start_free_radius", c->start_free_radius);
   reader.get("start_free_radius", &c->start_free_radius);
+  reader.get("autosave_period", &c->autosave_period);
+  reader.get("resume", &c->resume);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {

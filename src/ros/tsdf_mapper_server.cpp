@@ -1,6 +1,7 @@
 #include "surface_nbv/ros/tsdf_mapper_server.h"
 
 #include <chrono>
+#include <filesystem>
 
 #include <visualization_msgs/Marker.h>
 
@@ -50,6 +51,15 @@ TsdfMapperServer::TsdfMapperServer(ros::NodeHandle nh, ros::NodeHandle priv, con
   }
   stats_timer_ = nh_.createWallTimer(ros::WallDuration(config_.stats_period),
                                      [this](const ros::WallTimerEvent&) { publishStats(); });
+  // A previous process of this node on the same master left its mark: this
+  // is a respawn, so resume (a fresh launch never picks up old autosaves).
+  const std::string session = ros::this_node::getName() + "_session";
+  if (config_.resume && ros::param::has(session)) resumeFromAutosave();
+  ros::param::set(session, ros::WallTime::now().toSec());
+  if (config_.autosave_period > 0.0) {
+    autosave_timer_ = nh_.createWallTimer(ros::WallDuration(config_.autosave_period),
+                                          [this](const ros::WallTimerEvent&) { autosave(); });
+  }
   const TsdfConfig& t = config_.tsdf;
   ROS_INFO("tsdf_mapper: %s input, voxel %.3f m, truncation %.3f m, W_th %.2f, bounds [%.1f %.1f %.1f] - [%.1f %.1f "
            "%.1f] (%d x %d x %d blocks), invalid pixels: %s, %d thread(s)",
@@ -262,6 +272,50 @@ bool TsdfMapperServer::requestSnapshot(std_srvs::Trigger::Request&, std_srvs::Tr
   res.success = true;
   res.message = "the next tsdf/update is a snapshot";
   return true;
+}
+
+void TsdfMapperServer::autosave() {
+  if (map_.numBlocks() == 0) return;
+  std::error_code ec;
+  std::filesystem::create_directories(config_.map_directory, ec);
+  const std::string path = config_.map_directory + "/autosave_" + std::to_string(autosave_slot_) + ".tsdf";
+  const auto t0 = std::chrono::steady_clock::now();
+  if (Status s = surface_nbv::saveMap(map_, path); !s) {
+    stats_.count("autosave_failed");
+    ROS_WARN_THROTTLE(30.0, "tsdf_mapper: autosave to %s failed: %s", path.c_str(), s.message().c_str());
+    return;
+  }
+  stats_.count("autosaves");
+  ROS_DEBUG("tsdf_mapper: autosaved %zu blocks to %s in %.0f ms", map_.numBlocks(), path.c_str(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  autosave_slot_ = 1 - autosave_slot_;
+}
+
+void TsdfMapperServer::resumeFromAutosave() {
+  std::vector<std::pair<std::filesystem::file_time_type, int>> slots;
+  for (int k : {0, 1}) {
+    std::error_code ec;
+    const auto t = std::filesystem::last_write_time(config_.map_directory + "/autosave_" + std::to_string(k) + ".tsdf", ec);
+    if (!ec) slots.emplace_back(t, k);
+  }
+  std::sort(slots.rbegin(), slots.rend());
+  for (const auto& [time, k] : slots) {
+    const std::string path = config_.map_directory + "/autosave_" + std::to_string(k) + ".tsdf";
+    if (Status s = surface_nbv::loadMap(path, &map_); !s) {
+      ROS_WARN("tsdf_mapper: resume: %s refused: %s", path.c_str(), s.message().c_str());
+      stats_.count("resume_refused");
+      continue;
+    }
+    mesher_ = std::make_unique<MeshExtractor>();
+    meshed_stamp_ = 0;
+    snapshot_requested_ = true;
+    start_cleared_ = true;
+    autosave_slot_ = 1 - k;  // keep the snapshot we resumed from
+    stats_.count("resumed");
+    ROS_INFO("tsdf_mapper: resumed %zu blocks from %s", map_.numBlocks(), path.c_str());
+    return;
+  }
+  ROS_INFO("tsdf_mapper: resume: no autosave in %s, starting empty", config_.map_directory.c_str());
 }
 
 }  // namespace surface_nbv

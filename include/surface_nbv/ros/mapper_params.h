@@ -25,6 +25,8 @@ struct MapperConfig {
   int max_pending_frames = 10;    // frames waiting for their transform
   double tf_wait = 0.5;           // s a frame may wait for its transform
   double start_free_radius = 0.0; // m: unknown voxels this close to the first sensor pose become free (0 = off)
+  double autosave_period = 0.0;   // s (wall) between autosaves to map_directory/autosave_{0,1}.tsdf; 0 = off
+  bool resume = false;            // at start, load the newest valid autosave (after a crash and respawn)
 
   Status validate() const;
 };

@@ -57,6 +57,11 @@ class TsdfMapperServer {
   void publishUpdate();
   void publishMesh();
   void publishStats();
+  // Writes the older of the two autosave slots (atomic: saveMap writes a
+  // temporary file, syncs and renames), so the newest two snapshots remain.
+  void autosave();
+  // Loads the newest autosave that loads (the other one if it is damaged).
+  void resumeFromAutosave();
   bool saveMap(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res);
   bool loadMap(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res);
   bool exportMesh(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res);
@@ -77,7 +82,8 @@ class TsdfMapperServer {
   ros::Subscriber info_sub_, image_sub_, points_sub_;
   ros::Publisher update_pub_, mesh_pub_;
   ros::ServiceServer save_srv_, load_srv_, export_srv_, snapshot_srv_;
-  ros::WallTimer pending_timer_, update_timer_, mesh_timer_, stats_timer_;
+  ros::WallTimer pending_timer_, update_timer_, mesh_timer_, stats_timer_, autosave_timer_;
+  int autosave_slot_ = 0;
   uint64_t sequence_ = 0;
   uint64_t published_stamp_ = 0;  // map change counter at the last tsdf/update
   uint64_t meshed_stamp_ = 0;
