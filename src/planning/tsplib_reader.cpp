@@ -94,7 +94,8 @@ Status readTsplib(const std::string& path, TsplibProblem* problem) {
   if (dimension <= 0) return error(last, "no DIMENSION");
   if (p.edge_weight_type.empty()) return error(last, "no EDGE_WEIGHT_TYPE");
   const int n = dimension;
-  p.costs = CostMatrix(n);
+  // The matrix is allocated only once the section holds its numbers: a
+  // DIMENSION alone must not cost n^2 doubles (up to 80 GB).
   if (p.edge_weight_type == "EXPLICIT") {
     if (format.empty()) return error(last, "EDGE_WEIGHT_TYPE EXPLICIT needs EDGE_WEIGHT_FORMAT FULL_MATRIX");
     if (section != "EDGE_WEIGHT_SECTION") return error(last, "EXPLICIT weights need an EDGE_WEIGHT_SECTION");
@@ -104,6 +105,7 @@ Status readTsplib(const std::string& path, TsplibProblem* problem) {
                    "EDGE_WEIGHT_SECTION has " + std::to_string(numbers.size()) + " numbers, DIMENSION " +
                        std::to_string(n) + " (line " + std::to_string(dimension_line) + ") needs " +
                        std::to_string(want));
+    p.costs = CostMatrix(n);
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         const size_t k = size_t(i) * n + j;
@@ -133,9 +135,16 @@ Status readTsplib(const std::string& path, TsplibProblem* problem) {
       x[i] = numbers[3 * k + 1];
       y[i] = numbers[3 * k + 2];
     }
+    p.costs = CostMatrix(n);
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
-        if (i != j) p.costs.at(i, j) = std::floor(std::hypot(x[i] - x[j], y[i] - y[j]) + 0.5);
+        if (i == j) continue;
+        const double d = std::floor(std::hypot(x[i] - x[j], y[i] - y[j]) + 0.5);
+        if (!(d <= CostMatrix::kMaxCost)) {
+          return error(section_line, "nodes " + std::to_string(i + 1) + " and " + std::to_string(j + 1) +
+                                         " are farther apart than " + std::to_string(CostMatrix::kMaxCost));
+        }
+        p.costs.at(i, j) = d;
       }
     }
   }

@@ -113,3 +113,14 @@ TEST_F(TsplibReader, TspSolveTool) {
   EXPECT_EQ(WEXITSTATUS(std::system((exe + " " + file + " --bogus 1 2>/dev/null").c_str())), 2);
   EXPECT_EQ(WEXITSTATUS(std::system((exe + " " + file + ".missing 2>/dev/null").c_str())), 2);
 }
+
+// Found by review and reproduced with fuzz/fuzz_tsplib: a DIMENSION alone
+// used to allocate n^2 doubles, and far coordinates gave infinite costs.
+TEST_F(TsplibReader, RefusesBeforeAllocatingAndRefusesInfiniteDistances) {
+  EXPECT_NE(refusal("TYPE: TSP\nDIMENSION: 100000\nEDGE_WEIGHT_TYPE: EUC_2D\nNODE_COORD_SECTION\n1 0 0\nEOF\n")
+                .find("NODE_COORD_SECTION has 3 numbers"),
+            std::string::npos);
+  EXPECT_NE(refusal("TYPE: TSP\nDIMENSION: 2\nEDGE_WEIGHT_TYPE: EUC_2D\nNODE_COORD_SECTION\n1 -1e308 0\n2 1e308 0\nEOF\n")
+                .find("farther apart"),
+            std::string::npos);
+}
