@@ -44,6 +44,9 @@ nbv_build() {
   local jobs
   jobs=$(nproc 2>/dev/null || echo 2)
   nbv_log "building ${*:-all} with $jobs jobs"
-  make -C "$NBV_BUILD" -j"$jobs" --no-print-directory "$@" 2>&1 | grep -vE '^\[ *[0-9]+%\]|^(Scanning|Consolidate|Built target)' || true
-  [ "${PIPESTATUS[0]}" -eq 0 ] || { nbv_log "build failed"; return 1; }
+  # make's own status, whatever the filter does (grep exits 1 when it prints nothing).
+  local status_file="$NBV_BUILD.make.status"
+  { make -C "$NBV_BUILD" -j"$jobs" --no-print-directory "$@" 2>&1; echo "$?" >"$status_file"; } |
+    grep -vE '^\[ *[0-9]+%\]|^(Scanning|Consolidate|Built target)' || true
+  [ "$(cat "$status_file" 2>/dev/null)" = "0" ] || { nbv_log "build failed"; return 1; }
 }

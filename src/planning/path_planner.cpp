@@ -71,7 +71,16 @@ struct PathPlanner::Impl {
   ob::SpaceInformationPtr si;
   std::shared_ptr<og::LazyPRMstar> prm;
 
+  // LazyPRM's destructor does not free its roadmap states (OMPL 1.5:
+  // ~LazyPRM() = default, only clear() frees them): free them here.
+  ~Impl() { release(); }
+  void release() {
+    if (prm) prm->clear();
+    prm.reset();
+  }
+
   void build(const PathPlannerConfig& config) {
+    release();
     auto space = std::make_shared<ob::RealVectorStateSpace>(3);
     ob::RealVectorBounds b(3);
     for (int i = 0; i < 3; ++i) {

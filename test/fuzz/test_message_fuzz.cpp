@@ -107,7 +107,9 @@ TEST(MessageFuzz, CameraInfos) {
     const DepthCamera sentinel(base);
     DepthCamera camera = sentinel;
     const Status s = fromCameraInfoMsg(msg, base, &camera);
-    if (!mutated) ASSERT_TRUE(s.ok()) << "a valid camera_info was refused: " << s.message();
+    if (!mutated) {
+      ASSERT_TRUE(s.ok()) << "a valid camera_info was refused: " << s.message();
+    }
     if (!s) {
       ++tally.rejected;
       ASSERT_EQ(camera.fx(), sentinel.fx());
@@ -261,7 +263,9 @@ TEST(MessageFuzz, Trajectories) {
     Trajectory trajectory;
     Status s = fromTrajectoryMsg(msg, sim.time(), &trajectory);
     if (s) s = sim.setTrajectory(trajectory);
-    if (!mutated) ASSERT_TRUE(s.ok()) << "a valid trajectory was refused: " << s.message();
+    if (!mutated) {
+      ASSERT_TRUE(s.ok()) << "a valid trajectory was refused: " << s.message();
+    }
     if (!s) {
       ++tally.rejected;
       ASSERT_EQ(sim.mode(), TrackerMode::kHolding);
@@ -275,7 +279,9 @@ TEST(MessageFuzz, Trajectories) {
     for (size_t k = 0; k < trajectory.size(); ++k) {
       const TrajectoryPoint& p = trajectory.points()[k];
       ASSERT_TRUE(std::isfinite(p.t) && p.p_W.allFinite() && std::isfinite(p.yaw) && p.v_W.allFinite());
-      if (k > 0) ASSERT_GT(p.t, trajectory.points()[k - 1].t);
+      if (k > 0) {
+        ASSERT_GT(p.t, trajectory.points()[k - 1].t);
+      }
       // The yaw is that of the rotation the message means (its quaternion normalised).
       const geometry_msgs::Quaternion& q = msg.points[k].transforms.at(0).rotation;
       const Eigen::Quaterniond rotation = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized();
