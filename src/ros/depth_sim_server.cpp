@@ -1,6 +1,7 @@
 #include "surface_nbv/ros/depth_sim_server.h"
 
 #include <chrono>
+#include <cmath>
 
 #include <visualization_msgs/Marker.h>
 
@@ -9,6 +10,46 @@
 #include "surface_nbv/sim/mesh_io.h"
 
 namespace surface_nbv {
+namespace {
+
+// The view frustum of `camera` in its optical frame (z forward, x right,
+// y down): apex to the near plane (z = min_range), the near and far
+// (z = max_range) rectangles, and their four connecting edges.
+visualization_msgs::Marker frustumMarker(const CameraConfig& camera, const std::string& frame) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;  // stamp 0: rviz draws it at the latest TF
+  m.ns = "frustum";
+  m.type = visualization_msgs::Marker::LINE_LIST;
+  m.action = visualization_msgs::Marker::ADD;
+  m.frame_locked = true;  // re-transformed every frame, so it follows the camera
+  m.pose.orientation.w = 1.0;
+  m.scale.x = 0.03;
+  m.color.r = 0.3f, m.color.g = 0.85f, m.color.b = 1.0f, m.color.a = 0.7f;
+  const double tx = std::tan(0.5 * camera.hfov_deg * M_PI / 180.0);
+  const double ty = std::tan(0.5 * camera.vfov_deg * M_PI / 180.0);
+  auto corner = [&](double z, int i) {
+    geometry_msgs::Point p;
+    p.x = (i == 0 || i == 3 ? -tx : tx) * z;
+    p.y = (i < 2 ? -ty : ty) * z;
+    p.z = z;
+    return p;
+  };
+  const geometry_msgs::Point apex;
+  auto segment = [&m](const geometry_msgs::Point& a, const geometry_msgs::Point& b) {
+    m.points.push_back(a);
+    m.points.push_back(b);
+  };
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    segment(apex, corner(camera.min_range, i));
+    segment(corner(camera.min_range, i), corner(camera.min_range, j));
+    segment(corner(camera.max_range, i), corner(camera.max_range, j));
+    segment(corner(camera.min_range, i), corner(camera.max_range, i));
+  }
+  return m;
+}
+
+}  // namespace
 
 DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const CameraConfig& camera,
                                const DepthSimConfig& config)
@@ -37,7 +78,14 @@ DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const C
   std_msgs::Header header;
   header.frame_id = config_.world_frame;
   toMeshMarker(mesh_, header, "ground_truth", &marker);
+  // Translucent blue, so that the grey reconstruction shows through it.
+  marker.color.r = 0.3f;
+  marker.color.g = 0.5f;
+  marker.color.b = 1.0f;
+  marker.color.a = 0.3f;
   mesh_pub_.publish(marker);
+  frustum_pub_ = priv_.advertise<visualization_msgs::Marker>("frustum", 1, true);
+  frustum_pub_.publish(frustumMarker(camera, config_.camera_frame));
   export_srv_ = priv_.advertiseService("export_scene", &DepthSimServer::exportScene, this);
   timer_ = nh_.createTimer(ros::Duration(1.0 / camera.rate_hz), &DepthSimServer::onTimer, this);
 }

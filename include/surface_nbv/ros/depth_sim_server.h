@@ -1,7 +1,9 @@
 // The depth_sim node: at the camera rate it looks up world -> camera at the
 // frame time (sim time under use_sim_time), renders the scene with Embree and
 // publishes depth/image (32FC1), depth/camera_info, optionally depth/points,
-// plus a latched ground-truth mesh marker (~ground_truth) and ~stats.
+// plus a latched ground-truth mesh marker (~ground_truth), a latched
+// LINE_LIST of the camera's view frustum in the camera frame (~frustum: apex
+// to near plane at min_range, near to far plane at max_range) and ~stats.
 // A missing or invalid transform drops the frame (counted, throttled warning):
 // nothing is ever rendered from a stale pose.
 #pragma once
@@ -40,7 +42,7 @@ class DepthSimServer {
   std::unique_ptr<DepthRenderer> renderer_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  ros::Publisher image_pub_, info_pub_, points_pub_, mesh_pub_;
+  ros::Publisher image_pub_, info_pub_, points_pub_, mesh_pub_, frustum_pub_;
   ros::ServiceServer export_srv_;
   ros::Timer timer_;
   StatsReporter stats_;
