@@ -137,6 +137,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float fx = static_cast<float>(camera.fx()), fy = static_cast<float>(camera.fy());
   const float cx = static_cast<float>(camera.cx()) + 0.5f, cy = static_cast<float>(camera.cy()) + 0.5f;
   const float max_weight = cfg.max_weight;
+  const float frame_weight = weight_scale_;
   const float* usable = index_.usableData();
   const uint8_t* silhouette = index_.silhouetteData();
   std::vector<size_t> updated(work.size(), 0);
@@ -168,7 +169,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
             if (!(sdf >= -trunc) || (sdf < 0.0f && silhouette[pixel])) continue;
             sdf = std::min(sdf, trunc);
           }
-          updateVoxel(&vox[i], sdf, inv_z * inv_z, max_weight);
+          updateVoxel(&vox[i], sdf, frame_weight * inv_z * inv_z, max_weight);
           ++n;
         }
       }
@@ -250,7 +251,7 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     const Eigen::Vector3i l = TsdfMap::localOfVoxel(v);
     const double dist = std::max(kv.second.dist, 1e-3);
     updateVoxel(&b->at(l.x(), l.y(), l.z()), static_cast<float>(kv.second.sdf_sum / kv.second.count),
-                static_cast<float>(1.0 / (dist * dist)), cfg.max_weight);
+                static_cast<float>(weight_scale_ / (dist * dist)), cfg.max_weight);
     b->change_stamp = stamp;
     ++stats.voxels_updated;
   }

@@ -78,6 +78,9 @@ MissionResult MissionRunner::run() {
   tsdf.threads = c.threads;
   map_ = std::make_unique<TsdfMap>(tsdf);
   TsdfIntegrator integrator(map_.get());
+  // One integrated frame per 1 / frame_rate stands for the camera's frames
+  // in that time (rate_hz / frame_rate of them): the same weight per second.
+  integrator.setWeightScale(std::max(1.0, c.camera.rate_hz / c.frame_rate));
   CameraConfig camera_config = c.camera;
   camera_config.noise_seed = c.camera.noise_seed + c.seed;
   const DepthCamera camera(camera_config);

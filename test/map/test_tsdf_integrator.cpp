@@ -258,6 +258,33 @@ TEST(TsdfIntegrator, TwoThreadsGiveTheSameMap) {
   }
 }
 
+// A frame of weight scale 3 equals the same frame integrated three times.
+TEST(TsdfIntegrator, WeightScaleCountsAFrameAsSeveral) {
+  WallWorld world;
+  const DepthCamera camera(world.camera_config);
+  const Transform T = lookingAlongX(Eigen::Vector3d(0.5, 0.0, 0.2));
+  const DepthImage depth = world.render(T);
+  TsdfMap once(wallConfig()), thrice(wallConfig());
+  TsdfIntegrator scaled(&once), plain(&thrice);
+  scaled.setWeightScale(3.0);
+  scaled.setWeightScale(-1.0);  // ignored
+  EXPECT_FLOAT_EQ(scaled.weightScale(), 3.0f);
+  ASSERT_TRUE(scaled.integrateDepth(camera, depth, T).ok());
+  for (int k = 0; k < 3; ++k) ASSERT_TRUE(plain.integrateDepth(camera, depth, T).ok());
+  ASSERT_EQ(once.numBlocks(), thrice.numBlocks());
+  size_t compared = 0;
+  for (const auto& b : once.blocks()) {
+    const TsdfBlock* other = thrice.block(b->index);
+    ASSERT_NE(other, nullptr);
+    for (int i = 0; i < kBlockVoxels; ++i) {
+      ASSERT_NEAR(b->voxels[i].w, other->voxels[i].w, 1e-5f * std::max(1.0f, other->voxels[i].w));
+      ASSERT_NEAR(b->voxels[i].phi, other->voxels[i].phi, 1e-5f);
+      compared += other->voxels[i].w > 0.0f;
+    }
+  }
+  EXPECT_GT(compared, 1000u);
+}
+
 TEST(TsdfIntegrator, RefusesBadInputAndLeavesMapUnchanged) {
   WallWorld world;
   const DepthCamera camera(world.camera_config);

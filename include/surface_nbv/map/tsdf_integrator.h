@@ -14,6 +14,8 @@
 // Thread safety: one integration at a time per map; it uses config.threads.
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 #include <vector>
 
@@ -54,12 +56,24 @@ class TsdfIntegrator {
   // see it (min range). Returns the voxels changed; error for a bad ball.
   Status markFree(const Eigen::Vector3d& center, double radius, size_t* changed = nullptr);
 
+  // Each integrated frame counts as `scale` frames (weight scale * 1 / z^2):
+  // a stream decimated from a camera rate to a lower integration rate keeps
+  // the weight per second of the full stream (1 = every frame integrated).
+  // Consecutive frames of a camera at 30 Hz moving at 0.5 m/s are 1.7 cm
+  // apart, so one frame of weight k stands for k of them. Values <= 0 or
+  // non-finite are ignored.
+  void setWeightScale(double scale) {
+    if (std::isfinite(scale) && scale > 0.0) weight_scale_ = static_cast<float>(scale);
+  }
+  float weightScale() const { return weight_scale_; }
+
  private:
   // Blocks that can be in view and not hidden behind surfaces, allocated.
   std::vector<TsdfBlock*> candidateBlocks(const DepthCamera& camera, const Transform& T_W_C, IntegrationStats* stats);
 
   TsdfMap* map_;
   DepthIndex index_;
+  float weight_scale_ = 1.0f;
 };
 
 }  // namespace surface_nbv
