@@ -56,6 +56,9 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   MissionConfig c;
   ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &c).ok());
   c.progress_period = 30.0;
+  // Legs bounded by roadmap samples, not wall time: the repeat below must be exact.
+  c.path.iteration_budget = 20000;
+  c.path.time_budget = 60.0;
   TriangleMesh mesh;
   ASSERT_TRUE(loadScene(c.scene, &mesh).ok());
   std::unique_ptr<RaycastScene> scene;

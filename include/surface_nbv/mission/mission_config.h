@@ -32,12 +32,15 @@ struct MissionConfig {
   CollisionConfig collision;
   SurfaceConfig surface;
   ExplorerConfig explorer;
+  // Legs bounded by wall time (0.5 s) by default: fast, but a loaded machine
+  // may plan differently. For exact repeats set mission/path_iterations
+  // (roadmap samples per leg, e.g. 20000), as test_mission does.
   PathPlannerConfig path;
   TrackerSimConfig tracker;
 
   Eigen::Vector4d start{0.0, 0.0, 2.0, 0.0};  // [x, y, z, yaw] at take-off
   double speed = 0.5;              // reference speed [m/s] (the paper's)
-  double yaw_rate = 0.5;           // reference yaw rate [rad/s]
+  double yaw_rate = 1.0;           // reference yaw rate [rad/s] (the tracker's limit)
   double frame_rate = 5.0;         // depth frames integrated per flight second
   double frontier_period = 4.0;    // flight seconds between frontier updates on a leg
   double max_flight_time = 5400.0; // the mission stops there [s]

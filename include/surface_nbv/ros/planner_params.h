@@ -24,7 +24,7 @@ struct PlannerNodeConfig {
   std::string world_frame = "world";
   double replan_rate = 2.0;       // Hz: ticks; a tick decides on a new frontier, an ended leg or ~replan
   double speed = 0.5;             // m/s: reference speed of planner/trajectory
-  double yaw_rate = 0.5;          // rad/s: reference yaw rate (turns in place are timed by it)
+  double yaw_rate = 1.0;          // rad/s: reference yaw rate (turns in place are timed by it; the tracker's limit)
   double trajectory_spacing = 0.5;  // m between trajectory points along the path
   bool start_running = false;     // true: RUNNING from the start, else waits for ~start
   double start_spin = 6.2832;     // rad turned in place at the first start, before the first plan
