@@ -2,8 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_integrator.h"
@@ -177,12 +175,6 @@ MissionResult MissionRunner::run() {
     result.max_frontier_ms = std::max(result.max_frontier_ms, frontier_ms);
     ++result.frontier_updates;
     const ExplorerDecision d = explorer.update(frontier, uav, leg_finished);
-    if (std::getenv("NBV_DEBUG")) {
-      std::fprintf(stderr, "t %.1f uav %.2f %.2f %.2f: %s/%s path %s (%zu pts) target %.2f %.2f %.2f tour %zu free %.2f: %s\n",
-                   tracker.time(), uav.x(), uav.y(), uav.z(), toString(d.action), toString(d.reason),
-                   toString(d.path_status), d.path.size(), d.target.x(), d.target.y(), d.target.z(),
-                   explorer.tour().size(), collision.distance(uav.head<3>()), d.message.c_str());
-    }
     result.times.graph += d.timings.graph_ms;
     result.times.tour += d.timings.tour_ms;
     result.times.path += d.timings.path_ms;
@@ -208,11 +200,6 @@ MissionResult MissionRunner::run() {
     }
     result.events.push_back(event);
 
-    if (done && std::getenv("NBV_DEBUG")) {
-      for (const Ise& ise : frontier.ises)
-        if (!ise.remaining) std::fprintf(stderr, "  ISE %.2f %.2f %.2f vp %d\n", ise.position.x(), ise.position.y(), ise.position.z(), ise.viewpoint);
-      for (const Eigen::Vector3d& b : explorer.blacklist()) std::fprintf(stderr, "  blacklisted %.2f %.2f %.2f\n", b.x(), b.y(), b.z());
-    }
     if (done) {
       result.completed = d.reason == ReplanReason::kComplete;
       result.end_reason = std::string(toString(d.reason)) + ": " + d.message;

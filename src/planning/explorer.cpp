@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <unordered_map>
@@ -287,10 +285,6 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planner_.plan(from, moved);
     }
     d->path_status = leg.status;
-    if (std::getenv("NBV_DEBUG"))
-      std::fprintf(stderr, "  leg from %.2f %.2f %.2f (free %.2f) to %.2f %.2f %.2f (free %.2f): %s, roadmap %zu\n", from.x(),
-                   from.y(), from.z(), map_->distance(from.head<3>()), target.x(), target.y(), target.z(),
-                   map_->distance(target.head<3>()), toString(leg.status), planner_.roadmapVertices());
     if (hasPath(leg.status)) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());

@@ -5,15 +5,15 @@
 //   full recomputation   the cluster graph (eq. 4, 5) over the frontier and
 //                        the Lin-Kernighan open path from the UAV (planTour),
 //                        when there is no tour yet or every tour viewpoint
-//                        has been visited;
+//                        has been visited,
 //   local update         on every other frontier: tour viewpoints no frontier
 //                        viewpoint is near any more (their ISEs were
 //                        covered) leave the tour, frontier viewpoints near no
 //                        tour viewpoint (new ISEs) join it by cheapest
-//                        insertion, and the order of the rest is kept;
+//                        insertion, and the order of the rest is kept,
 //   leg                  a collision-checked LazyPRM* path from the UAV to the
 //                        first tour viewpoint, re-planned when the map puts an
-//                        obstacle on it (checkPath) or the target leaves the tour;
+//                        obstacle on it (checkPath) or the target leaves the tour,
 //   stop                 when no ISE of C_ins remains, or none of the
 //                        remaining viewpoints can be reached: the decision
 //                        says which.
@@ -139,8 +139,8 @@ class Explorer {
   bool fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
   bool localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
   bool pathBlocked(const Eigen::Vector4d& uav) const;
-  // The point nearest p (within `within`) clear of the radius plus a cell;
-  // writes its position into q's first three coordinates.
+  // The point nearest p (within `within`) clear of the radius plus a cell,
+  // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
 
