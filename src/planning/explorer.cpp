@@ -116,6 +116,7 @@ void Explorer::reset() {
   requested_ = false;
   places_.clear();
   blacklist_.clear();
+  arcs_.clear();
   stats_ = ExplorerStats();
 }
 
@@ -175,6 +176,11 @@ bool Explorer::fullRecompute(const Frontier& frontier, const Eigen::Vector4d& ua
   }
   tour_ = plan.configurations;
   stats_.tour_cost = plan.cost;
+  arcs_.clear();
+  for (size_t i = 0; i < plan.clusters.size(); ++i) {
+    const ClusterEdge& e = graph.edge(i == 0 ? 0 : plan.clusters[i - 1] + 1, plan.clusters[i] + 1);
+    arcs_.push_back({e.q_k.head<3>(), graph.configuration(e.l_viewpoint).head<3>(), e.utility});
+  }
   return !tour_.empty();
 }
 

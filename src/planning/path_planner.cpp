@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <ompl/base/Planner.h>
+#include <ompl/base/PlannerData.h>
 #include <ompl/base/PlannerTerminationCondition.h>
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/SpaceInformation.h>
@@ -135,6 +136,22 @@ void PathPlanner::clear() {
 }
 
 size_t PathPlanner::roadmapVertices() const { return impl_->prm ? impl_->prm->milestoneCount() : 0; }
+
+std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdges(size_t max_edges) const {
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges;
+  if (!impl_->prm) return edges;
+  ob::PlannerData data(impl_->si);
+  impl_->prm->getPlannerData(data);
+  std::vector<unsigned int> out;
+  for (unsigned int i = 0; i < data.numVertices() && edges.size() < max_edges; ++i) {
+    data.getEdges(i, out);
+    for (unsigned int j : out) {
+      if (j <= i || edges.size() >= max_edges) continue;  // each undirected edge once
+      edges.emplace_back(toPoint(data.getVertex(i).getState()), toPoint(data.getVertex(j).getState()));
+    }
+  }
+  return edges;
+}
 
 PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal) {
   const auto t0 = std::chrono::steady_clock::now();

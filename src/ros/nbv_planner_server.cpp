@@ -462,6 +462,33 @@ void NbvPlannerServer::publishMarkers() {
                                             visualization_msgs::Marker::SPHERE_LIST);
   bl.scale.x = bl.scale.y = bl.scale.z = 0.4;
   markers.markers.push_back(bl);
+  // The roadmap (grey) and the tour's cluster-graph arcs, red (low utility f_uv) to green (high).
+  visualization_msgs::Marker roadmap = lineStrip(header, "roadmap", {}, 0.6f, 0.6f, 0.6f);
+  roadmap.type = visualization_msgs::Marker::LINE_LIST;
+  roadmap.scale.x = 0.02;
+  roadmap.color.a = 0.4f;
+  for (const auto& [a, b] : explorer_.pathPlanner().roadmapEdges(20000)) {
+    roadmap.points.push_back(tf2::toMsg(a));
+    roadmap.points.push_back(tf2::toMsg(b));
+  }
+  markers.markers.push_back(roadmap);
+  visualization_msgs::Marker graph = lineStrip(header, "cluster_graph", {}, 1.0f, 1.0f, 1.0f);
+  graph.type = visualization_msgs::Marker::LINE_LIST;
+  graph.scale.x = 0.08;
+  double best = 0.0;
+  for (const TourArc& arc : explorer_.tourArcs()) best = std::max(best, arc.utility);
+  for (const TourArc& arc : explorer_.tourArcs()) {
+    std_msgs::ColorRGBA c;
+    const double f = best > 0.0 ? arc.utility / best : 0.0;
+    c.r = static_cast<float>(1.0 - f);
+    c.g = static_cast<float>(f);
+    c.a = 1.0f;
+    graph.points.push_back(tf2::toMsg(arc.from));
+    graph.points.push_back(tf2::toMsg(arc.to));
+    graph.colors.push_back(c);
+    graph.colors.push_back(c);
+  }
+  markers.markers.push_back(graph);
   markers_pub_.publish(markers);
 }
 

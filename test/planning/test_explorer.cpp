@@ -88,6 +88,15 @@ TEST(Explorer, FirstFrontierPlansTheTourAndAFreeLegToItsFirstViewpoint) {
   EXPECT_NEAR((d.path.back() - d.target).norm(), 0.0, 1e-6);
   expectFree(world.collision(), d.path);
   EXPECT_EQ(explorer.stats().full_recomputes, 1u);
+  // The tour's cluster-graph arcs: UAV -> first cluster, then cluster to cluster.
+  ASSERT_EQ(explorer.tourArcs().size(), 2u);
+  EXPECT_NEAR((explorer.tourArcs()[0].from - kUav.head<3>()).norm(), 0.0, 1e-9);
+  for (const TourArc& arc : explorer.tourArcs()) EXPECT_GT(arc.utility, 0.0);
+  // The roadmap the legs came from, as segments inside the bounds.
+  const auto edges = explorer.pathPlanner().roadmapEdges(100);
+  ASSERT_FALSE(edges.empty());
+  EXPECT_LE(edges.size(), 100u);
+  for (const auto& [a, b] : edges) EXPECT_TRUE(world.bounds().contains(a) && world.bounds().contains(b));
 }
 
 TEST(Explorer, LocalUpdateDropsCoveredViewpointsAndInsertsNewOnes) {

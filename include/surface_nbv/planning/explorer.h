@@ -90,6 +90,13 @@ struct ExplorerDecision {
   std::string message;
 };
 
+// An arc of the last full recomputation's tour: from the exit q_k of one
+// cluster (or the UAV) to the entry q_l of the next, with its utility f_uv.
+struct TourArc {
+  Eigen::Vector3d from = Eigen::Vector3d::Zero(), to = Eigen::Vector3d::Zero();
+  double utility = 0.0;
+};
+
 struct ExplorerStats {
   size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
@@ -123,6 +130,8 @@ class Explorer {
   const std::vector<Eigen::Vector4d>& currentPath() const { return path_; }
   bool hasTarget() const { return have_target_; }
   const std::vector<Eigen::Vector3d>& blacklist() const { return blacklist_; }
+  // The cluster-graph arcs the last full recomputation's tour uses.
+  const std::vector<TourArc>& tourArcs() const { return arcs_; }
   const ExplorerStats& stats() const { return stats_; }
   const ExplorerConfig& config() const { return config_; }
   PathPlanner& pathPlanner() { return planner_; }
@@ -154,6 +163,7 @@ class Explorer {
   bool requested_ = false;
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
+  std::vector<TourArc> arcs_;
   ExplorerStats stats_;
 };
 

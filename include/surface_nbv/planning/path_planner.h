@@ -23,6 +23,7 @@
 #pragma once
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -93,6 +94,9 @@ class PathPlanner {
 
   // Roadmap vertices currently held (for tests and statistics).
   size_t roadmapVertices() const;
+  // The roadmap as line segments (pairs of endpoints), at most max_edges of
+  // them, for display. Edges not yet checked are included (it is lazy).
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> roadmapEdges(size_t max_edges) const;
 
  private:
   struct Impl;
