@@ -71,11 +71,12 @@ TEST(EvalPipeline, BoxSceneFlightThroughTsdfAndMarchingCubes) {
   EXPECT_NEAR(r.numVisible(), 8000.0, 2.0);  // the floor face is hidden
   // The flight sees every face: nearly everything is covered and matched.
   EXPECT_GE(r.coverage.coverage(), 0.995);
-  EXPECT_GT(r.matched, 0.98 * r.numVisible());
-  // At 0.3 m voxels the projective TSDF rounds and thickens the convex edges
-  // (README, "The TSDF map"): the surface lies a few centimetres outside on
-  // average. Cross-check with the box's exact signed distance at the
-  // reconstruction's own samples (off the floor).
+  EXPECT_GT(r.matched, 0.95 * r.numVisible());
+  // At 0.3 m voxels the projective TSDF rounds the convex edges (README, "The
+  // TSDF map"); with the default clear_inf policy the open sky beside the
+  // silhouettes is carved too, so the surface no longer lies centimetres
+  // outside on average (with ignore it did: mean 2-6 cm). Cross-check with the
+  // box's exact signed distance at the reconstruction's own samples (off the floor).
   double sum = 0.0, sum_sq = 0.0;
   size_t n = 0;
   for (const Eigen::Vector3f& q : r.reconstruction.points) {
@@ -91,9 +92,8 @@ TEST(EvalPipeline, BoxSceneFlightThroughTsdfAndMarchingCubes) {
               100.0 * std::sqrt(sum_sq / n));
   EXPECT_NEAR(e.mean, sum / n, 0.005);
   EXPECT_NEAR(e.rmse, std::sqrt(sum_sq / n), 0.005);
-  EXPECT_GT(e.mean, 0.02);
-  EXPECT_LT(e.mean, 0.06);
-  EXPECT_GT(e.rmse, 0.04);
+  EXPECT_LT(std::abs(e.mean), 0.02);
+  EXPECT_GT(e.rmse, 0.03);
   EXPECT_LT(e.rmse, 0.075);
 }
 

@@ -13,14 +13,18 @@
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/ros/map_conversions.h"
+#include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/ros/param_reader.h"
 
 using namespace surface_nbv;
 
 TEST(IseExtractor, FrontierViewpointsAreFreeAndInsideTheBounds) {
   ros::NodeHandle nh;
-  TsdfConfig config;  // as config/plant.yaml
-  config.voxel_size = 0.3;
-  config.bounds = AlignedBox(Eigen::Vector3d(-36, -25, 0), Eigen::Vector3d(36, 25, 17));
+  // The shared map parameters, read as the nodes read them (one copy, never disagreeing).
+  TsdfConfig config;
+  ParamReader shared(ros::NodeHandle("/nbv"));
+  readSharedMapConfig(&shared, &config);
+  ASSERT_TRUE(shared.status().ok()) << shared.status().message();
   MapMirror mirror(config);
   std::mutex mutex;
   SurfaceFrontier last;

@@ -15,6 +15,8 @@
 #include "surface_nbv/TsdfUpdate.h"
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/ros/map_conversions.h"
+#include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/sim/mesh_io.h"
 
 using namespace surface_nbv;
@@ -40,9 +42,11 @@ uint64_t counter(const NodeStats& s, const std::string& name) {
 
 TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
   ros::NodeHandle nh;
+  // The shared map parameters, read as the nodes read them (one copy, never disagreeing).
   TsdfConfig config;
-  config.voxel_size = 0.1;
-  config.bounds = AlignedBox(Eigen::Vector3d(-8, -8, 0), Eigen::Vector3d(8, 8, 6));
+  ParamReader shared(ros::NodeHandle("/nbv"));
+  readSharedMapConfig(&shared, &config);
+  ASSERT_TRUE(shared.status().ok()) << shared.status().message();
   MapMirror mirror(config);
   std::mutex mutex;
   size_t triangles = 0, updates = 0, snapshots_asked = 0;
