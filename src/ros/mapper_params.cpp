@@ -36,6 +36,12 @@ void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
   shared->get("bounds_max", &map->bounds.max);
 }
 
+Status loadSharedMapConfig(const std::string& ns, TsdfConfig* map) {
+  ParamReader shared{ros::NodeHandle(ns)};
+  readSharedMapConfig(&shared, map);
+  return shared.status();
+}
+
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);

@@ -14,7 +14,6 @@
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/ros/map_conversions.h"
 #include "surface_nbv/ros/mapper_params.h"
-#include "surface_nbv/ros/param_reader.h"
 
 using namespace surface_nbv;
 
@@ -22,9 +21,8 @@ TEST(IseExtractor, FrontierViewpointsAreFreeAndInsideTheBounds) {
   ros::NodeHandle nh;
   // The shared map parameters, read as the nodes read them (one copy, never disagreeing).
   TsdfConfig config;
-  ParamReader shared(ros::NodeHandle("/nbv"));
-  readSharedMapConfig(&shared, &config);
-  ASSERT_TRUE(shared.status().ok()) << shared.status().message();
+  const Status shared = loadSharedMapConfig("/nbv", &config);
+  ASSERT_TRUE(shared.ok()) << shared.message();
   MapMirror mirror(config);
   std::mutex mutex;
   SurfaceFrontier last;

@@ -31,6 +31,9 @@ struct MapperConfig {
   Status validate() const;
 };
 
+// The shared map parameters of namespace `ns` (e.g. "/nbv"), as every node
+// reads them, for tests and tools that mirror the map.
+Status loadSharedMapConfig(const std::string& ns, TsdfConfig* map);
 // Reads voxel_size, w_th, bounds_min and bounds_max (the map every node shares).
 void readSharedMapConfig(ParamReader* shared, TsdfConfig* map);
 

@@ -14,7 +14,7 @@
 //   - hovers when odometry is older than odometry_timeout or the map has not
 //     been updated for map_timeout (both ROS time), and resumes when they come back.
 // planner/status (surface_nbv/PlannerStatus, latched) says the state, the
-// last reason, ISE counts, tour, flown length and stage timings;
+// last reason, ISE counts, tour, flown length and stage timings, and
 // planner/markers shows the tour, the current leg, the next target and the
 // blacklisted places.
 //
