@@ -9,10 +9,6 @@
 //                --crop-max 1e9,1e9,15 --voxel-size 0.3 --plots
 //
 // Exit codes: 0 done, 2 bad arguments, 1 a failure (file, evaluation, report).
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +18,7 @@
 #include "surface_nbv/eval/report_writer.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/sim/scene_source.h"
+#include "surface_nbv/util/run_process.h"
 
 using namespace surface_nbv;
 
@@ -66,26 +63,6 @@ Status configFromArgs(const CliArgs& args, EvalConfig* config) {
   return config->validate();
 }
 
-// Runs a program without a shell; with `quiet`, its output goes to /dev/null.
-// Returns its exit status, or -1 when it could not start.
-int run(std::vector<std::string> argv, bool quiet) {
-  std::vector<char*> c_argv;
-  for (std::string& a : argv) c_argv.push_back(a.data());
-  c_argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) {
-    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  }
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, c_argv[0], &actions, nullptr, c_argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  if (spawned != 0 || waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // Runs scripts/plot_evaluation.py on the report directory when python3 and
 // matplotlib are there; says what it did either way.
 int makePlots(const std::string& out_dir) {
@@ -95,12 +72,12 @@ int makePlots(const std::string& out_dir) {
     std::printf("plots skipped: %s not found\n", script.c_str());
     return 0;
   }
-  if (run({python, "-c", "import matplotlib"}, true) != 0) {
+  if (runProcess({python, "-c", "import matplotlib"}, true) != 0) {
     std::printf("plots skipped: python3-matplotlib is not installed (apt-get install python3-matplotlib)\n");
     return 0;
   }
   std::fflush(stdout);
-  if (run({python, script, out_dir}, false) != 0)
+  if (runProcess({python, script, out_dir}, false) != 0)
     return failure("plotting failed: " + python + " " + script + " " + out_dir);
   return 0;
 }

@@ -9,9 +9,6 @@
 // Per trial (DIR/trial_K/): reconstruction.ply, map.tsdf, path.csv (flown
 // poses), events.csv (every frontier update), eval/ (nbv_evaluate's report and
 // clouds) and PNG plots; in DIR: report.json and report.md over all trials.
-#include <sys/wait.h>
-#include <spawn.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,8 +25,7 @@
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
-
-extern char** environ;
+#include "surface_nbv/util/run_process.h"
 
 using namespace surface_nbv;
 
@@ -56,21 +52,6 @@ struct TrialRow {
   MissionStageTimes times;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
 };
-
-int run(const std::vector<std::string>& argv, bool quiet) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (quiet) posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", 0x1, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  int status = 0;
-  if (spawned != 0 || waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 Status writeCsvs(const std::string& dir, const MissionResult& r) {
   std::ofstream path(dir + "/path.csv");
@@ -213,9 +194,9 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     if (!args.has("no-plots")) {
       const std::string script = std::string(NBV_SOURCE_DIR) + "/scripts/plot_mission.py";
-      if (run({"/usr/bin/python3", "-c", "import matplotlib"}, true) != 0) {
+      if (runProcess({"/usr/bin/python3", "-c", "import matplotlib"}, true) != 0) {
         std::printf("  plots skipped: python3-matplotlib is not installed\n");
-      } else if (run({"/usr/bin/python3", script, dir}, false) != 0) {
+      } else if (runProcess({"/usr/bin/python3", script, dir}, false) != 0) {
         std::printf("  plotting failed: /usr/bin/python3 %s %s\n", script.c_str(), dir.c_str());
       }
     }
