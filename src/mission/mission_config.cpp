@@ -156,6 +156,11 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("max_visits", &c->explorer.max_visits);
   m.get("blacklist_radius", &c->explorer.blacklist_radius);
   m.get("always_full", &c->explorer.always_full);
+  m.get("full_on_leg_end", &c->explorer.full_on_leg_end);
+  m.get("travel_yaw", &c->explorer.travel_yaw);
+  m.get("turn_distance", &c->explorer.turn_distance);
+  m.get("min_visible", &c->explorer.min_visible);
+  m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
   std::string policy = toString(c->tsdf.invalid_pixels);
   m.get("invalid_pixels", &policy);
   m.refuseUnknown();

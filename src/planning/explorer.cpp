@@ -70,6 +70,8 @@ Status ExplorerConfig::validate() const {
     return Status::Error("blacklist_radius expected >= 0");
   }
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
+  if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
+  if (min_visible < 0) return Status::Error("min_visible expected >= 0");
   return Status::Ok();
 }
 
@@ -138,21 +140,36 @@ void Explorer::countFailure(const Eigen::Vector3d& p) {
   if (++place.failures == config_.max_failures) blacklist_.push_back(place.position);
 }
 
-Frontier Explorer::withoutBlacklisted(const Frontier& frontier) const {
+Frontier Explorer::withoutBlacklisted(const Frontier& frontier, int min_visible) const {
   Frontier f = frontier;
-  if (blacklist_.empty()) return f;
+  if (blacklist_.empty() && min_visible <= 0) return f;
   std::vector<Cluster> clusters;
   for (Viewpoint& v : f.viewpoints) v.cluster = -1;
   for (const Cluster& c : frontier.clusters) {
     Cluster kept = c;
     kept.viewpoints.clear();
     for (uint32_t i : c.viewpoints)
-      if (!blacklisted(frontier.viewpoints[i].position)) kept.viewpoints.push_back(i);
+      if (!blacklisted(frontier.viewpoints[i].position) &&
+          frontier.viewpoints[i].visible.size() >= static_cast<size_t>(std::max(0, min_visible))) {
+        kept.viewpoints.push_back(i);
+      }
     if (kept.viewpoints.empty()) continue;
     for (uint32_t i : kept.viewpoints) f.viewpoints[i].cluster = static_cast<int32_t>(clusters.size());
     clusters.push_back(std::move(kept));
   }
   f.clusters = std::move(clusters);
+  return f;
+}
+
+Frontier Explorer::plannable(const Frontier& frontier) {
+  Frontier f = withoutBlacklisted(frontier, config_.min_visible);
+  size_t dropped = 0;
+  for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
+    dropped += frontier.viewpoints[i].cluster >= 0 && f.viewpoints[i].cluster < 0 &&
+               !blacklisted(frontier.viewpoints[i].position);
+  }
+  stats_.dropped_no_gain = dropped;
+  if (f.clusters.empty() && config_.min_visible > 0) f = withoutBlacklisted(frontier, 0);
   return f;
 }
 
@@ -294,6 +311,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
     if (hasPath(leg.status)) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());
+      orientLeg(&path_, target);
       have_target_ = true;
       d->action = ExplorerAction::kFly;
       d->path = path_;
@@ -313,6 +331,30 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   if (d->reason == ReplanReason::kNone) d->reason = ReplanReason::kTargetUnreachable;
   d->message = std::string("no path to a tour viewpoint (last: ") + toString(d->path_status) + ")";
   d->timings.path_ms = msSince(t0);
+}
+
+void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const {
+  std::vector<Eigen::Vector4d>& p = *path;
+  if (!config_.travel_yaw || p.size() < 2) return;
+  // Heading of each segment; a (nearly) vertical one keeps the previous heading.
+  double heading = p.front().w();
+  std::vector<double> headings(p.size() - 1);
+  for (size_t i = 0; i + 1 < p.size(); ++i) {
+    const Eigen::Vector2d step = p[i + 1].head<2>() - p[i].head<2>();
+    if (step.norm() > 0.2) heading = std::atan2(step.y(), step.x());
+    headings[i] = heading;
+  }
+  // Vertex i looks along segment i; the last segment turns to the target's yaw
+  // over its final turn_distance metres (all of it when shorter).
+  for (size_t i = 0; i + 1 < p.size(); ++i) p[i].w() = headings[i];
+  p.back().w() = target.w();
+  const Eigen::Vector3d a = p[p.size() - 2].head<3>(), b = p.back().head<3>();
+  const double last = (b - a).norm();
+  if (last > config_.turn_distance + 0.1) {
+    Eigen::Vector4d turn_point;
+    turn_point << b + (a - b) * (config_.turn_distance / last), headings.back();
+    p.insert(p.end() - 1, turn_point);
+  }
 }
 
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
@@ -345,14 +387,15 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     stats_.last = d.timings;
     return d;
   }
-  const Frontier f = withoutBlacklisted(frontier);
+  const Frontier f = plannable(frontier);
   // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
   // blacklisted (unreachable, or visited max_visits times without completing
   // it) has no collision-free configuration that completes it, so it joins C_rem.
   size_t open = 0;
-  for (const Ise& ise : f.ises) {
-    open += !ise.remaining && ise.viewpoint >= 0 && static_cast<size_t>(ise.viewpoint) < f.viewpoints.size() &&
-            f.viewpoints[ise.viewpoint].cluster >= 0;
+  for (const Ise& ise : frontier.ises) {
+    if (ise.remaining || ise.viewpoint < 0 || static_cast<size_t>(ise.viewpoint) >= frontier.viewpoints.size()) continue;
+    const Viewpoint& v = frontier.viewpoints[ise.viewpoint];
+    open += v.cluster >= 0 && !blacklisted(v.position);
   }
   if (open == 0 && !blacklist_.empty()) {
     tour_.clear();
@@ -370,8 +413,12 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
   const bool initial = stats_.full_recomputes == 0;
   bool have_tour = false;
   if (!tour_.empty() && !config_.always_full) have_tour = localUpdate(f, uav, &d);
+  // full_on_leg_end: a new target is due (the leg ended or its target was
+  // covered), so the order of the rest is recomputed from here.
+  const bool leg_end_full = have_tour && config_.full_on_leg_end && !have_target_;
+  if (leg_end_full) have_tour = false;
   if (!have_tour) {
-    if (d.reason == ReplanReason::kNone || d.reason == ReplanReason::kTargetReached) {
+    if (d.reason == ReplanReason::kNone || (d.reason == ReplanReason::kTargetReached && !leg_end_full)) {
       d.reason = requested_ ? ReplanReason::kRequested : initial ? ReplanReason::kInitial : ReplanReason::kTourFinished;
     }
     requested_ = false;
@@ -391,7 +438,7 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     }
     nextLeg(uav, &d);
     // Every target failed: the tour is empty; one full recomputation more.
-    if (d.action == ExplorerAction::kHover && tour_.empty() && fullRecompute(withoutBlacklisted(frontier), uav, &d)) {
+    if (d.action == ExplorerAction::kHover && tour_.empty() && fullRecompute(plannable(frontier), uav, &d)) {
       nextLeg(uav, &d);
     }
   }

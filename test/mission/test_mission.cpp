@@ -32,6 +32,11 @@ TEST(MissionConfig, ReadsTheSharedPlantParameters) {
   EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_tc, 0.3);
   EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_ic, 0.03);
   EXPECT_EQ(c.scene.scene, "plant");
+  // The mission section's planning keys: repeatable legs, travel yaw.
+  EXPECT_EQ(c.path.iteration_budget, 3000);
+  EXPECT_TRUE(c.explorer.travel_yaw);
+  EXPECT_DOUBLE_EQ(c.explorer.turn_distance, 4.0);
+  EXPECT_EQ(c.explorer.min_visible, 1);
   EXPECT_TRUE(c.validate().ok()) << c.validate().message();
 }
 

@@ -236,6 +236,84 @@ TEST(Explorer, ClustersWithoutGainLeaveNothingReachable) {
   EXPECT_NE(d.message.find("1 ISE(s) of C_ins remain"), std::string::npos) << d.message;
 }
 
+// travel_yaw: every vertex but the last looks along its outgoing segment, the
+// last one has the target's yaw, reached over the final turn_distance metres.
+TEST(Explorer, TravelYawLooksAlongTheLegAndTurnsToTheTargetAtTheEnd) {
+  WallWorld world(true);
+  ExplorerConfig config;
+  config.travel_yaw = true;
+  config.turn_distance = 1.5;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
+  f.viewpoints[0].yaw = 2.0;
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  ASSERT_GE(d.path.size(), 3u);
+  EXPECT_NEAR(d.path.back().w(), 2.0, 1e-9);
+  EXPECT_NEAR((d.path.back() - d.target).norm(), 0.0, 1e-6);
+  for (size_t i = 0; i + 1 < d.path.size(); ++i) {
+    const Eigen::Vector2d step = (d.path[i + 1] - d.path[i]).head<2>();
+    if (step.norm() < 0.2) continue;
+    EXPECT_NEAR(d.path[i].w(), std::atan2(step.y(), step.x()), 1e-9) << "vertex " << i;
+  }
+  const size_t n = d.path.size();
+  EXPECT_NEAR((d.path[n - 1] - d.path[n - 2]).head<3>().norm(), 1.5, 1e-6);
+  expectFree(world.collision(), d.path);
+
+  // Without it the yaw goes from the UAV's to the target's along the leg.
+  Explorer plain(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision p = plain.update(f, kUav, false);
+  ASSERT_EQ(p.action, ExplorerAction::kFly);
+  EXPECT_NEAR(p.path.front().w(), kUav.w(), 1e-9);
+  EXPECT_NEAR(p.path.back().w(), 2.0, 1e-9);
+}
+
+// full_on_leg_end: reaching a target recomputes the whole tour from the UAV
+// instead of keeping the old order.
+TEST(Explorer, FullOnLegEndRecomputesTheTourWhenATargetIsReached) {
+  WallWorld world(true);
+  const Frontier f = makeFrontier({{{-3, 2, 2.5}}, {{-3, -4.5, 2.5}}, {{-2, 4, 2.5}}});
+  for (bool full : {false, true}) {
+    ExplorerConfig config;
+    config.full_on_leg_end = full;
+    Explorer explorer(config, pathConfig());
+    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    ExplorerDecision d = explorer.update(f, kUav, false);
+    ASSERT_EQ(d.action, ExplorerAction::kFly);
+    d = explorer.update(f, d.target, true);
+    ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+    EXPECT_EQ(d.reason, ReplanReason::kTargetReached);
+    EXPECT_EQ(d.full_recompute, full);
+    EXPECT_EQ(explorer.stats().full_recomputes, full ? 2u : 1u);
+    EXPECT_EQ(explorer.stats().targets_reached, 1u);
+  }
+}
+
+// min_visible: a viewpoint whose C_q is empty leaves the tour; when nothing
+// else is left the filter is lifted rather than ending the mission.
+TEST(Explorer, ViewpointsThatSeeNothingAreLeftOutOfTheTour) {
+  WallWorld world(true);
+  ExplorerConfig config;
+  config.min_visible = 1;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  Frontier f = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}});
+  f.viewpoints[1].visible.clear();
+  ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly);
+  ASSERT_EQ(explorer.tour().size(), 1u);
+  EXPECT_NEAR((explorer.tour()[0].head<3>() - Eigen::Vector3d(-3, 2, 2.5)).norm(), 0.0, 1e-9);
+  EXPECT_EQ(explorer.stats().dropped_no_gain, 1u);
+  Explorer only(config, pathConfig());
+  ASSERT_TRUE(only.setMap(&world.collision(), world.bounds()).ok());
+  Frontier g = makeFrontier({{{-3, 2, 2.5}}});
+  g.viewpoints[0].visible.clear();
+  d = only.update(g, kUav, false);
+  EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
+}
+
 TEST(Explorer, ConfigRefusesBadValues) {
   ExplorerConfig c;
   EXPECT_TRUE(c.validate().ok());
@@ -244,6 +322,12 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.match_radius = std::nan("");
   EXPECT_NE(c.validate().message().find("match_radius"), std::string::npos);
+  c = ExplorerConfig();
+  c.turn_distance = -1.0;
+  EXPECT_NE(c.validate().message().find("turn_distance"), std::string::npos);
+  c = ExplorerConfig();
+  c.min_visible = -1;
+  EXPECT_NE(c.validate().message().find("min_visible"), std::string::npos);
 }
 
 }  // namespace

@@ -74,7 +74,15 @@ TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
   ros::AsyncSpinner spinner(2);
   spinner.start();
   // Wrong encodings and sizes among the simulator's frames are counted drops.
-  for (int i = 0; i < 50 && bad_pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.1).sleep();
+  // They are sent once the mapper integrates frames: before its first
+  // camera_info any image counts as no_camera_info, not bad_image.
+  for (int i = 0; i < 600; ++i) {
+    {
+      std::lock_guard<std::mutex> l(mutex);
+      if (bad_pub.getNumSubscribers() > 0 && counter(stats, "frames_integrated") > 0) break;
+    }
+    ros::WallDuration(0.1).sleep();
+  }
   sensor_msgs::Image bad;
   bad.header.frame_id = "camera";
   bad.header.stamp = ros::Time::now();

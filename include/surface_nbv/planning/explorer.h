@@ -46,6 +46,17 @@ struct ExplorerConfig {
   double blacklist_radius = 1.0;  // m
   int max_leg_attempts = 6;       // targets tried per decision before hovering
   bool always_full = false;       // recompute the whole tour on every frontier (comparison mode)
+  // Recompute the whole tour whenever a new target is chosen after a leg
+  // ended (reached, failed or covered), not only when the tour ran out:
+  // cheapest insertions then never pile up into a zigzag tour.
+  bool full_on_leg_end = false;
+  // Path yaw: false interpolates from the start yaw to the target's along the
+  // whole leg; true looks along the direction of travel on each segment and
+  // turns to the target's yaw over the last turn_distance metres.
+  bool travel_yaw = false;
+  double turn_distance = 2.0;     // m
+  // A tour viewpoint must still see at least this many ISEs (|C_q|).
+  int min_visible = 0;
 
   // Names the first bad key.
   Status validate() const;
@@ -101,6 +112,7 @@ struct ExplorerStats {
   size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
   size_t tour_viewpoints = 0, clusters = 0;
+  size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -144,7 +156,12 @@ class Explorer {
   Place& placeAt(const Eigen::Vector3d& p);
   bool blacklisted(const Eigen::Vector3d& p) const;
   void countFailure(const Eigen::Vector3d& p);
-  Frontier withoutBlacklisted(const Frontier& frontier) const;
+  // The frontier without blacklisted viewpoints nor ones that see fewer
+  // than min_visible ISEs (clusters left empty are dropped).
+  Frontier withoutBlacklisted(const Frontier& frontier, int min_visible = 0) const;
+  // withoutBlacklisted with config().min_visible, or without it when that
+  // would leave no cluster.
+  Frontier plannable(const Frontier& frontier);
   bool fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
   bool localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
   bool pathBlocked(const Eigen::Vector4d& uav) const;
@@ -152,6 +169,8 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
+  // Applies travel_yaw to a leg ending at `target`.
+  void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
 
   ExplorerConfig config_;
   PathPlanner planner_;
