@@ -46,6 +46,7 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   shared.get("delta_pose", &s.delta_pose);
   shared.get("d_nu", &s.d_nu);
   shared.get("d_nu_max", &s.d_nu_max);
+  shared.get("approach_range_fraction", &s.approach_range_fraction);
   readCameraConfig(&shared, &s.camera);
   shared.checkUnknown("camera");
   if (Status st = shared.status(); !st) return st;

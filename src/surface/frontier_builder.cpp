@@ -1,6 +1,8 @@
 #include "surface_nbv/surface/frontier_builder.h"
 
+#include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cmath>
 
 #include "surface_nbv/surface/chunked_for.h"
@@ -12,6 +14,21 @@ using Clock = std::chrono::steady_clock;
 
 double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// An approach viewpoint cannot see its ISE yet (unknown space in between)
+// but is there to see it: C_q holds its approach sources too.
+void addApproachSources(const std::vector<Ise>& ises, std::vector<Viewpoint>* viewpoints) {
+  for (Viewpoint& q : *viewpoints) {
+    std::vector<uint32_t> extra;
+    for (uint32_t i : q.sources)
+      if (ises[i].approach) extra.push_back(i);
+    if (extra.empty()) continue;
+    std::vector<uint32_t> merged;
+    merged.reserve(q.visible.size() + extra.size());
+    std::set_union(q.visible.begin(), q.visible.end(), extra.begin(), extra.end(), std::back_inserter(merged));
+    q.visible = std::move(merged);
+  }
 }
 
 }  // namespace
@@ -46,6 +63,8 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
 
   // One pose per ISE (eq. 2 and the fall-backs).
   const VoxelRayCaster rays(grid, config_.unknown_blocks_visibility);
+  const VoxelRayCaster loose(grid, false);
+  const VoxelRayCaster* approach = config_.approach_range_fraction > 0.0 ? &loose : nullptr;
   const AlignedBox& bounds = map.config().bounds;
   std::vector<Viewpoint> poses(voxels.size());
   std::vector<PoseSearch> searches(voxels.size());
@@ -55,7 +74,7 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
     ise.id = grid.voxelId(voxels[i]);
     ise.position = grid.voxelCenter(voxels[i]);
     ise.direction = generator_.direction(grid, voxels[i]);
-    searches[i] = generator_.generate(rays, collision, bounds, voxels[i], ise.direction, &poses[i]);
+    searches[i] = generator_.generate(rays, collision, bounds, voxels[i], ise.direction, &poses[i], approach);
     poses[i].sources.assign(1, static_cast<uint32_t>(i));
   });
   std::vector<Viewpoint> accepted;
@@ -71,6 +90,8 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
       continue;
     }
     if (searches[i].tested > 1) ++stats.fallback_poses;
+    out.ises[i].approach = searches[i].approach;
+    stats.approach_poses += searches[i].approach ? 1 : 0;
     accepted.push_back(std::move(poses[i]));
     accepted_ise.push_back(static_cast<uint32_t>(i));
   }
@@ -83,6 +104,7 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
   const Clock::time_point t3 = Clock::now();
 
   stats.voxel_steps = visibility_.evaluate(rays, out.ises, &out.viewpoints);
+  if (stats.approach_poses > 0) addApproachSources(out.ises, &out.viewpoints);
   const Clock::time_point t4 = Clock::now();
 
   std::vector<std::pair<int, int>> links;

@@ -20,6 +20,9 @@ Status SurfaceConfig::validate() const {
   for (double f : fallback_distance_fractions) {
     if (!finite(f) || f <= 0.0 || f >= 1.0) return Status::Error("fallback_distance_fractions expected values in (0, 1)");
   }
+  if (!finite(approach_range_fraction) || approach_range_fraction < 0.0 || approach_range_fraction > 1.0) {
+    return Status::Error("approach_range_fraction expected in [0, 1]");
+  }
   if (!finite(fov_margin_deg) || fov_margin_deg < 0.0 || fov_margin_deg >= 0.5 * camera.vfov_deg) {
     return Status::Error("fov_margin_deg expected in [0, camera/vfov_deg / 2)");
   }

@@ -26,6 +26,9 @@ ViewpointGenerator::ViewpointGenerator(const SurfaceConfig& config) : config_(co
   for (double f : fractions) {
     if (f * config_.delta_pose < distances_.back() - 1e-9) distances_.push_back(f * config_.delta_pose);
   }
+  const double approach_max = config_.approach_range_fraction * config_.camera.max_range;
+  const double step = 0.25 * config_.delta_pose;
+  for (double d = config_.delta_pose + step; d <= approach_max + 1e-9; d += step) approach_distances_.push_back(d);
   int n = 0;
   for (int dz = -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
@@ -122,11 +125,18 @@ bool ViewpointGenerator::acceptable(const VoxelRayCaster& rays, const CollisionM
 
 PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const CollisionMap& collision,
                                         const AlignedBox& bounds, const Eigen::Vector3i& voxel,
-                                        const Eigen::Vector3d& n_v, Viewpoint* pose) const {
+                                        const Eigen::Vector3d& n_v, Viewpoint* pose,
+                                        const VoxelRayCaster* loose) const {
   PoseSearch search;
   if (n_v.squaredNorm() < 0.5) return search;
   const VoxelStateGrid& grid = rays.grid();
   const Eigen::Vector3d v = grid.voxelCenter(voxel);
+  auto setPose = [&](double d, const Eigen::Vector3d& dir) {
+    pose->position = v + d * dir;
+    pose->view_direction = -dir;
+    pose->yaw = std::atan2(-dir.y(), -dir.x());
+    search.found = true;
+  };
   auto tryDirection = [&](const Eigen::Vector3d& dir) {
     double accepted = 0.0;
     const bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
@@ -140,11 +150,25 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
       if (grid.voxelOf(p, &at) && grid.at(at) == VoxelStateGrid::kUnknown) search.unknown_blocked = true;
       return false;
     });
+    if (found) setPose(accepted, dir);
+    return found;
+  };
+  // Approach poses: the usual distances, then farther ones, with the loose rays.
+  auto tryApproach = [&](const Eigen::Vector3d& dir) {
+    double accepted = 0.0;
+    bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
+      ++search.tested;
+      accepted = d;
+      return acceptable(*loose, collision, bounds, voxel, v + d * dir);
+    });
+    for (size_t k = 0; !found && k < approach_distances_.size(); ++k) {
+      ++search.tested;
+      accepted = approach_distances_[k];
+      found = acceptable(*loose, collision, bounds, voxel, v + accepted * dir);
+    }
     if (found) {
-      pose->position = v + accepted * dir;
-      pose->view_direction = -dir;
-      pose->yaw = std::atan2(-dir.y(), -dir.x());
-      search.found = true;
+      setPose(accepted, dir);
+      search.approach = true;
     }
     return found;
   };
@@ -154,6 +178,10 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
   const std::vector<Eigen::Vector3d> directions = candidateDirections(n_v);
   for (size_t k = has_azimuth ? 1 : 0; k < directions.size(); ++k) {
     if (tryDirection(directions[k])) return search;
+  }
+  if (loose == nullptr || !search.unknown_blocked || config_.approach_range_fraction <= 0.0) return search;
+  for (const Eigen::Vector3d& dir : directions) {
+    if (tryApproach(dir)) return search;
   }
   return search;
 }

@@ -126,6 +126,53 @@ TEST(ViewpointGenerator, BlockedEq2PoseFallsBackToAShorterDistance) {
   EXPECT_NEAR((pose.position - centre).norm(), 0.5 * config.delta_pose, 1e-9);
 }
 
+TEST(ViewpointGenerator, UnknownBlockedIseGetsAnApproachPoseBeyondTheUnknownBand) {
+  WallScene scene;
+  // Unknown space from 6 to 9 m in x: every pose up to delta_pose from the
+  // wall's edge (39, 19, 15) at x = 9.9 m touches it with the 1 m radius.
+  fillBox(&scene.map, Eigen::Vector3i(24, 0, 0), Eigen::Vector3i(36, 60, 30), VoxelState::kUnknown);
+  scene.refresh();
+  SurfaceConfig config = testSurfaceConfig();
+  config.approach_range_fraction = 0.9;
+  const ViewpointGenerator generator(config);
+  const VoxelRayCaster rays(scene.extractor.states(), true);
+  const VoxelRayCaster loose(scene.extractor.states(), false);
+  const Eigen::Vector3i v(39, 19, 15);
+  ASSERT_TRUE(scene.extractor.isIse(v));
+  const Eigen::Vector3d n = generator.direction(scene.extractor.states(), v);
+  const AlignedBox& bounds = scene.map.config().bounds;
+  Viewpoint strict_pose;
+  const PoseSearch strict = generator.generate(rays, *scene.collision, bounds, v, n, &strict_pose);
+  EXPECT_FALSE(strict.found);
+  EXPECT_TRUE(strict.unknown_blocked);
+  EXPECT_FALSE(strict.approach);
+
+  Viewpoint pose;
+  const PoseSearch search = generator.generate(rays, *scene.collision, bounds, v, n, &pose, &loose);
+  ASSERT_TRUE(search.found);
+  EXPECT_TRUE(search.approach);
+  EXPECT_GT(search.tested, strict.tested);
+  const Eigen::Vector3d centre = scene.map.voxelCenter(v);
+  const double d = (pose.position - centre).norm();
+  EXPECT_GT(d, config.delta_pose - 1e-9);
+  EXPECT_LE(d, config.approach_range_fraction * config.camera.max_range + 1e-9);
+  // On the near side of the band, clear of it by the collision radius, and
+  // looking at the ISE across it.
+  EXPECT_LT(pose.position.x(), 6.0 - config.collision_radius);
+  EXPECT_TRUE(scene.collision->isFree(pose.position, config.collision_radius));
+  EXPECT_TRUE(bounds.contains(pose.position));
+  expectVectorNear(pose.view_direction, (centre - pose.position).normalized());
+  uint64_t steps = 0;
+  EXPECT_FALSE(rays.clear(pose.position, v, &steps));
+  EXPECT_TRUE(loose.clear(pose.position, v, &steps));
+
+  // A zero approach range turns approach poses off, loose rays or not.
+  config.approach_range_fraction = 0.0;
+  const ViewpointGenerator no_approach(config);
+  Viewpoint none;
+  EXPECT_FALSE(no_approach.generate(rays, *scene.collision, bounds, v, n, &none, &loose).approach);
+}
+
 TEST(ViewpointGenerator, VerticalDirectionIsTiltedIntoTheVerticalFov) {
   WallScene scene;
   scene.refresh();

@@ -24,6 +24,9 @@ struct Ise {
   // In C_rem, and some candidate pose lay in unknown space: it may leave
   // C_rem once that space is observed (C_rem is recomputed every update).
   bool unknown_blocked = false;
+  // Outside C_rem only through an approach pose (SurfaceConfig): its
+  // viewpoint counts it as visible, since flying there is how it gets seen.
+  bool approach = false;
 };
 
 // A 4-DOF configuration [x, y, z, yaw]: the camera at `position`, level,
@@ -55,6 +58,7 @@ struct FrontierStats {
   size_t poses_tested = 0;        // candidate poses over all ISEs
   size_t fallback_poses = 0;      // ISEs whose pose is a fall-back, not the eq. 2 pose
   size_t unmerged_viewpoints = 0; // one per ISE outside C_rem
+  size_t approach_poses = 0;      // ISEs whose pose is an approach pose
   uint64_t voxel_steps = 0;       // DDA steps of the visibility stage
   size_t links = 0;               // cluster-graph edges
 

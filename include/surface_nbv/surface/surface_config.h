@@ -21,6 +21,13 @@ struct SurfaceConfig {
   // sits at the camera's min range.
   std::vector<double> fallback_rotations_deg{30.0, 60.0, 90.0};
   std::vector<double> fallback_distance_fractions{0.75, 0.5};
+  // Approach poses for ISEs whose every candidate failed and some lay in
+  // unknown space: the same directions again, at the usual distances and
+  // farther out up to this fraction of the camera's max range, accepting a
+  // line of sight through unknown (never occupied) voxels. Flying there
+  // observes the unknown space in between, so the ISE is not left in C_rem
+  // before anyone looked. 0 turns approach poses off.
+  double approach_range_fraction = 0.0;
   // The ISE of a viewpoint must lie this far inside the vertical FOV edges
   // (the UAV cannot pitch).
   double fov_margin_deg = 2.0;

@@ -31,6 +31,7 @@ struct PoseSearch {
   bool found = false;
   int tested = 0;                // candidates tried (1: the eq. 2 pose itself was accepted)
   bool unknown_blocked = false;  // some candidate inside the bounds lay in an unknown voxel
+  bool approach = false;         // found only as an approach pose (see SurfaceConfig)
 };
 
 class ViewpointGenerator {
@@ -45,8 +46,11 @@ class ViewpointGenerator {
   // `n_v`: when found, fills position, yaw and view_direction of *pose.
   // Not found when no candidate is acceptable or n_v is zero (the ISE
   // belongs to C_rem).
+  // `loose`, when given, is a ray caster through unknown space over the same
+  // grid: with it, an unknown-blocked search goes on with approach poses.
   PoseSearch generate(const VoxelRayCaster& rays, const CollisionMap& collision, const AlignedBox& bounds,
-                      const Eigen::Vector3i& voxel, const Eigen::Vector3d& n_v, Viewpoint* pose) const;
+                      const Eigen::Vector3i& voxel, const Eigen::Vector3d& n_v, Viewpoint* pose,
+                      const VoxelRayCaster* loose = nullptr) const;
 
   // Whether a camera at p_W, yawed towards `voxel`, is an acceptable pose for it.
   bool acceptable(const VoxelRayCaster& rays, const CollisionMap& collision, const AlignedBox& bounds,
@@ -80,6 +84,7 @@ class ViewpointGenerator {
   double max_elevation_;          // rad, |elevation| of a usable direction
   std::vector<double> rotations_; // rad
   std::vector<double> distances_; // delta_pose and its fractions, descending
+  std::vector<double> approach_distances_;  // beyond delta_pose up to the approach range, ascending
   Eigen::Vector3d offsets_[26];   // unit offsets to the 26 neighbours
   Eigen::Vector3i neighbours_[26];
 };
