@@ -2,14 +2,19 @@
 // plant (config/powerplant.yaml) explored headless for `kFlight` seconds of
 // flight, then, on that map and its frontier:
 //   BM_FullRecompute   the cluster graph (eq. 4, 5), the LK tour and the first
-//                      leg with a fresh roadmap (what a full recomputation costs)
+//                      leg with a fresh roadmap (what a full recomputation costs),
+//                      argument 1: cluster-graph distances by the path-length
+//                      oracle (path_distances) on a roadmap warmed by 150 queries
 //   BM_LocalUpdate     a local update (one cluster covered, tour kept) and the leg
 //   BM_PathQuery       a LazyPRM* query between two connected frontier viewpoints
-//                      on a roadmap kept from earlier queries
-// Counters give the stage split (ms) and the frontier's size.
+//                      on a roadmap kept from earlier queries; arguments:
+//                      shortcutting on/off, and PathPlannerConfig::search
+// Counters give the stage split (ms) and the frontier's size; BM_PathQuery
+// also the median query (median_ms) and the roadmap's size.
 //   scripts/bench explorer
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -47,7 +52,10 @@ World& world() {
     std::fprintf(stderr, "bench_explorer: exploring the power plant for %.0f s of flight...\n", kFlight);
     w.runner = std::make_unique<MissionRunner>(w.config, *w.scene);
     const MissionResult r = w.runner->run();
-    if (!r.status || r.flown.empty()) return w;
+    if (!r.status || r.flown.empty()) {
+      std::fprintf(stderr, "bench_explorer: mission failed: %s\n", r.status.message().c_str());
+      return w;
+    }
     w.uav = r.flown.back();
     w.collision = std::make_unique<CollisionMap>(w.runner->map(), w.config.collision);
     SurfaceConfig surface = w.config.surface;
@@ -72,14 +80,40 @@ void setCounters(benchmark::State& state, const ExplorerTimings& t, size_t n) {
   state.counters["clusters"] = w.frontier.clusters.size();
 }
 
+// Warms a planner's roadmap with one pass of queries between consecutive
+// frontier viewpoints, as a mission does; returns the pairs that have a path.
+std::vector<std::pair<size_t, size_t>> warm(PathPlanner* planner, const std::vector<Eigen::Vector4d>& goals,
+                                            size_t* tried) {
+  std::vector<std::pair<size_t, size_t>> pairs;
+  *tried = 0;
+  for (size_t i = 0; i + 1 < goals.size() && *tried < 150; i += 2, ++*tried) {
+    if (hasPath(planner->plan(goals[i], goals[i + 1]).status)) pairs.emplace_back(i, i + 1);
+  }
+  return pairs;
+}
+
+std::vector<Eigen::Vector4d> viewpointGoals(const World& w) {
+  std::vector<Eigen::Vector4d> goals;
+  for (const Viewpoint& v : w.frontier.viewpoints) goals.emplace_back(v.position.x(), v.position.y(), v.position.z(), v.yaw);
+  return goals;
+}
+
 void BM_FullRecompute(benchmark::State& state) {
   World& w = world();
   if (!w.ok) return state.SkipWithError("no power plant frontier (is ../shared/scenes/powerplant.dae there?)");
+  ExplorerConfig config = w.config.explorer;
+  config.path_distances = state.range(0) != 0;
   ExplorerTimings sum;
   size_t n = 0;
   for (auto _ : state) {
-    Explorer explorer(w.config.explorer, w.config.path);
+    state.PauseTiming();
+    Explorer explorer(config, w.config.path);
     explorer.setMap(w.collision.get(), w.config.tsdf.bounds);
+    if (config.path_distances) {
+      size_t tried = 0;
+      warm(&explorer.pathPlanner(), viewpointGoals(w), &tried);
+    }
+    state.ResumeTiming();
     const ExplorerDecision d = explorer.update(w.frontier, w.uav, false);
     benchmark::DoNotOptimize(d.path.data());
     sum.graph_ms += d.timings.graph_ms, sum.tour_ms += d.timings.tour_ms, sum.path_ms += d.timings.path_ms;
@@ -87,7 +121,8 @@ void BM_FullRecompute(benchmark::State& state) {
   }
   setCounters(state, sum, n);
 }
-BENCHMARK(BM_FullRecompute)->Unit(benchmark::kMillisecond)->Iterations(5);
+// Argument: 0 = straight-line cluster-graph distances, 1 = path_distances.
+BENCHMARK(BM_FullRecompute)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 void BM_LocalUpdate(benchmark::State& state) {
   World& w = world();
@@ -120,29 +155,32 @@ void BM_PathQuery(benchmark::State& state) {
   if (!w.ok) return state.SkipWithError("no power plant frontier");
   PathPlannerConfig config = w.config.path;
   config.simplify = state.range(0) != 0;
+  config.search = static_cast<QuerySearch>(state.range(1));
   PathPlanner planner(config);
   planner.setMap(w.collision.get(), w.config.tsdf.bounds);
-  std::vector<Eigen::Vector4d> goals;
-  for (const Viewpoint& v : w.frontier.viewpoints) goals.emplace_back(v.position.x(), v.position.y(), v.position.z(), v.yaw);
+  const std::vector<Eigen::Vector4d> goals = viewpointGoals(w);
   if (goals.size() < 2) return state.SkipWithError("too few viewpoints");
-  // Warm the roadmap with one pass of queries, as a mission does; time the
-  // pairs that have a path (a pair without one runs to the budget, counted apart).
-  std::vector<std::pair<size_t, size_t>> pairs;
+  // Time the pairs that have a path (a pair without one runs to the budget).
   size_t tried = 0;
-  for (size_t i = 0; i + 1 < goals.size() && tried < 150; i += 2, ++tried) {
-    if (hasPath(planner.plan(goals[i], goals[i + 1]).status)) pairs.emplace_back(i, i + 1);
-  }
+  const std::vector<std::pair<size_t, size_t>> pairs = warm(&planner, goals, &tried);
   if (pairs.empty()) return state.SkipWithError("no pair of viewpoints is connected");
+  std::vector<double> seconds;
   size_t k = 0;
   for (auto _ : state) {
     const auto& [a, b] = pairs[k++ % pairs.size()];
-    benchmark::DoNotOptimize(planner.plan(goals[a], goals[b]).length);
+    const PathResult r = planner.plan(goals[a], goals[b]);
+    benchmark::DoNotOptimize(r.length);
+    seconds.push_back(r.seconds);
   }
+  std::nth_element(seconds.begin(), seconds.begin() + seconds.size() / 2, seconds.end());
+  state.counters["median_ms"] = 1e3 * seconds[seconds.size() / 2];
   state.counters["connected"] = static_cast<double>(pairs.size()) / tried;
   state.counters["roadmap"] = planner.roadmapVertices();
 }
-// Argument: 1 = with the collision-checked shortcutting, 0 = the raw roadmap path.
-BENCHMARK(BM_PathQuery)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(200);
+// Arguments: {1 = with the collision-checked shortcutting, 0 = the raw
+// roadmap path} x QuerySearch {0 = kFast (our lazy A*), 1 = kOmplSearch
+// (LazyPRM::constructSolution), 2 = kOmplSolve (LazyPRM::solve, the old way)}.
+BENCHMARK(BM_PathQuery)->ArgsProduct({{1, 0}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(200);
 
 }  // namespace
 

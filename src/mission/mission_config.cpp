@@ -161,6 +161,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("travel_yaw", &c->explorer.travel_yaw);
   m.get("turn_distance", &c->explorer.turn_distance);
   m.get("min_visible", &c->explorer.min_visible);
+  m.get("path_distances", &c->explorer.path_distances);
   m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
   std::string policy = toString(c->tsdf.invalid_pixels);
   m.get("invalid_pixels", &policy);

@@ -175,8 +175,10 @@ Frontier Explorer::plannable(const Frontier& frontier) {
 
 bool Explorer::fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d) {
   const auto t0 = Clock::now();
-  const DistanceFn euclidean = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).norm(); };
-  const ClusterGraph graph(frontier, uav, euclidean, config_.graph);
+  const DistanceFn distance =
+      config_.path_distances ? DistanceFn(planner_.distanceOracle())
+                             : DistanceFn([](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).norm(); });
+  const ClusterGraph graph(frontier, uav, distance, config_.graph);
   d->timings.graph_ms = msSince(t0);
   const auto t1 = Clock::now();
   const TourPlan plan = planTour(graph, config_.tsp);

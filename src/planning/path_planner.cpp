@@ -1,9 +1,16 @@
 #include "surface_nbv/planning/path_planner.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
 #include <limits>
+#include <queue>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
 #include <ompl/base/Planner.h>
@@ -17,11 +24,17 @@
 #include <ompl/geometric/planners/prm/LazyPRMstar.h>
 
 #include "surface_nbv/map/collision_map.h"
+#include "lazy_roadmap.h"
 
 namespace ob = ompl::base;
 namespace og = ompl::geometric;
 
 namespace surface_nbv {
+
+using roadmap_detail::Attachment;
+using roadmap_detail::kInf;
+using roadmap_detail::Roadmap;
+using roadmap_detail::toPoint;
 
 namespace {
 
@@ -34,12 +47,48 @@ class SeededSampler : public ob::RealVectorStateSampler {
   }
 };
 
-Eigen::Vector3d toPoint(const ob::State* state) {
-  const auto* s = state->as<ob::RealVectorStateSpace::StateType>();
-  return Eigen::Vector3d(s->values[0], s->values[1], s->values[2]);
+void setPoint(ob::State* state, const Eigen::Vector3d& p) {
+  auto* s = state->as<ob::RealVectorStateSpace::StateType>();
+  for (int i = 0; i < 3; ++i) s->values[i] = p[i];
 }
 
 double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+// The exact bits of a point, so caches keyed by position never merge two points.
+struct PointKey {
+  std::array<uint64_t, 3> bits{};
+  explicit PointKey(const Eigen::Vector3d& p) { std::memcpy(bits.data(), p.data(), sizeof(bits)); }
+  bool operator==(const PointKey& o) const { return bits == o.bits; }
+  bool operator<(const PointKey& o) const { return bits < o.bits; }
+};
+struct PointKeyHash {
+  size_t operator()(const PointKey& k) const {
+    uint64_t h = 1469598103934665603ull;
+    for (uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull;
+    return static_cast<size_t>(h ^ (h >> 29));
+  }
+};
+struct PairKeyHash {
+  size_t operator()(const std::pair<PointKey, PointKey>& k) const {
+    return PointKeyHash()(k.first) * 31 + PointKeyHash()(k.second);
+  }
+};
+
+// The path-length oracle's memory for one cluster graph: the roadmap
+// vertices by grid cell, each point's attachments, one resumable search
+// per source and every answer (keyed by the ordered pair, so symmetric).
+struct DistanceCache {
+  const Roadmap* roadmap = nullptr;
+  uint64_t version = 0;
+  double cell = 1.0;
+  std::unordered_map<int64_t, std::vector<uint32_t>> grid;
+  std::unordered_map<PointKey, std::vector<Attachment>, PointKeyHash> attachments;
+  std::unordered_map<PointKey, std::unique_ptr<Roadmap::Search>, PointKeyHash> searches;
+  std::unordered_map<std::pair<PointKey, PointKey>, double, PairKeyHash> known;
+};
+
+constexpr size_t kAttach = 6;         // roadmap vertices a point is attached to
+constexpr double kVerticesPerCell = 4.0;
 
 }  // namespace
 
@@ -70,7 +119,10 @@ struct PathPlanner::Impl {
   AlignedBox bounds;
   double resolution = 0.0;  // motion-check step [m]
   ob::SpaceInformationPtr si;
-  std::shared_ptr<og::LazyPRMstar> prm;
+  std::shared_ptr<Roadmap> prm;
+  ob::OptimizationObjectivePtr objective;
+  ob::State* from = nullptr;  // scratch states for motionFree
+  ob::State* to = nullptr;
 
   // LazyPRM's destructor does not free its roadmap states (OMPL 1.5:
   // ~LazyPRM() = default, only clear() frees them): free them here.
@@ -78,6 +130,8 @@ struct PathPlanner::Impl {
   void release() {
     if (prm) prm->clear();
     prm.reset();
+    if (si && from) si->freeState(from), si->freeState(to);
+    from = to = nullptr;
   }
 
   void build(const PathPlannerConfig& config) {
@@ -100,7 +154,86 @@ struct PathPlanner::Impl {
     });
     si->setStateValidityCheckingResolution(resolution / space->getMaximumExtent());
     si->setup();
-    prm = std::make_shared<og::LazyPRMstar>(si);
+    prm = std::make_shared<Roadmap>(si);
+    objective = std::make_shared<ob::PathLengthOptimizationObjective>(si);
+    objective->setCostThreshold(config.stop_at_first_solution ? ob::Cost(kInf) : ob::Cost(0.0));
+    from = si->allocState();
+    to = si->allocState();
+  }
+
+  // The straight motion a -> b is collision-free (b and the points between).
+  bool motionFree(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    setPoint(from, a);
+    setPoint(to, b);
+    return si->checkMotion(from, to);
+  }
+
+  static int64_t cellKey(const Eigen::Vector3i& i) {
+    constexpr int64_t kOffset = 1 << 20;
+    return ((i.x() + kOffset) << 42) | ((i.y() + kOffset) << 21) | (i.z() + kOffset);
+  }
+  Eigen::Vector3i cellOf(const DistanceCache& c, const Eigen::Vector3d& p) const {
+    return ((p - bounds.min) / c.cell).array().floor().cast<int>().cwiseMax(-1).cwiseMin(1 << 19);
+  }
+
+  void resetCache(DistanceCache* c) {
+    *c = DistanceCache();
+    c->roadmap = prm.get();
+    const std::vector<Eigen::Vector3d>& pos = prm->positions();
+    c->version = prm->version();
+    const double volume = (bounds.max - bounds.min).prod();
+    c->cell = std::cbrt(kVerticesPerCell * volume / std::max<double>(1.0, pos.size()));
+    for (uint32_t v = 0; v < pos.size(); ++v) c->grid[cellKey(cellOf(*c, pos[v]))].push_back(v);
+  }
+
+  // The nearest roadmap vertices (up to kAttach) valid and in free straight
+  // line from p, searched in the 3^3 and then 5^3 cells around p.
+  const std::vector<Attachment>& attachments(DistanceCache* c, const Eigen::Vector3d& p) {
+    auto [it, fresh] = c->attachments.try_emplace(PointKey(p));
+    if (!fresh) return it->second;
+    const std::vector<Eigen::Vector3d>& pos = prm->positions();
+    const Eigen::Vector3i centre = cellOf(*c, p);
+    std::vector<std::pair<double, uint32_t>> candidates;
+    for (int r = 1; r <= 2 && candidates.size() < 2 * kAttach; ++r) {
+      candidates.clear();
+      for (int x = -r; x <= r; ++x)
+        for (int y = -r; y <= r; ++y)
+          for (int z = -r; z <= r; ++z) {
+            const auto cell = c->grid.find(cellKey(centre + Eigen::Vector3i(x, y, z)));
+            if (cell == c->grid.end()) continue;
+            for (uint32_t v : cell->second) candidates.emplace_back((pos[v] - p).norm(), v);
+          }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (size_t k = 0; k < candidates.size() && k < 4 * kAttach && it->second.size() < kAttach; ++k) {
+      const uint32_t v = candidates[k].second;
+      if (prm->vertexValid(v) && motionFree(p, pos[v])) it->second.push_back({v, candidates[k].first});
+    }
+    return it->second;
+  }
+
+  double distance(DistanceCache* c, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    if (!prm) return (a - b).norm();
+    const bool swap = PointKey(b) < PointKey(a);
+    const Eigen::Vector3d& x = swap ? b : a;
+    const Eigen::Vector3d& y = swap ? a : b;
+    const PointKey kx(x), ky(y);
+    if (kx == ky) return 0.0;
+    if (c->roadmap != prm.get() || c->version != prm->version()) resetCache(c);
+    const auto known = c->known.find({kx, ky});
+    if (known != c->known.end()) return known->second;
+    double d = (x - y).norm();
+    if (!motionFree(x, y)) {
+      const std::vector<Attachment>& targets = attachments(c, y);
+      std::unique_ptr<Roadmap::Search>& search = c->searches[kx];
+      if (!search) {
+        search = std::make_unique<Roadmap::Search>();
+        prm->startSearch(attachments(c, x), search.get());
+      }
+      d = prm->distanceTo(search.get(), targets);
+    }
+    c->known.emplace(std::make_pair(kx, ky), d);
+    return d;
   }
 };
 
@@ -155,6 +288,7 @@ std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdg
 
 PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal) {
   const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   PathResult result;
   auto finish = [&](PathStatus status) {
     result.status = status;
@@ -162,7 +296,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       result.path.clear();
       result.length = 0.0;
     }
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.seconds = elapsed();
     return result;
   };
   if (!impl_->prm || !start.allFinite() || !goal.allFinite() || !config_.validate()) {
@@ -175,13 +309,11 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   }
   if (!impl_->si->isValid(s.get())) return finish(PathStatus::kInvalidStart);
   if (!impl_->si->isValid(g.get())) return finish(PathStatus::kInvalidGoal);
+  if (config_.time_budget <= 0.0) return finish(PathStatus::kTimeout);
 
   auto pdef = std::make_shared<ob::ProblemDefinition>(impl_->si);
   pdef->setStartAndGoalStates(s, g);
-  auto objective = std::make_shared<ob::PathLengthOptimizationObjective>(impl_->si);
-  objective->setCostThreshold(config_.stop_at_first_solution ? ob::Cost(std::numeric_limits<double>::infinity())
-                                                             : ob::Cost(0.0));
-  pdef->setOptimizationObjective(objective);
+  pdef->setOptimizationObjective(impl_->objective);
   impl_->prm->setProblemDefinition(pdef);
 
   // Iterations are counted as evaluations of the condition: LazyPRM evaluates
@@ -193,7 +325,15 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
     ptc = ob::plannerOrTerminationCondition(
         ptc, ob::PlannerTerminationCondition([&evaluations, budget] { return ++evaluations > budget; }));
   }
-  const ob::PlannerStatus status = impl_->prm->solve(ptc);
+  // Improving a path until the budget ends is solve()'s job; a graph search
+  // stops at the first (shortest) roadmap path.
+  const int mode = !config_.stop_at_first_solution || config_.search == QuerySearch::kOmplSolve ? Roadmap::kGrowOnly
+                   : config_.search == QuerySearch::kFast                                        ? Roadmap::kFastSearch
+                                                                                                  : Roadmap::kOmplSearch;
+  const double budget_s = config_.time_budget;
+  std::vector<Eigen::Vector3d> raw;
+  const ob::PlannerStatus status =
+      impl_->prm->query(ptc, [&elapsed, budget_s] { return elapsed() > budget_s; }, mode, &raw);
   impl_->prm->clearQuery();
 
   switch (ob::PlannerStatus::StatusType(status)) {
@@ -204,26 +344,26 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       return finish(budget > 0 && evaluations > budget ? PathStatus::kNoSolution : PathStatus::kTimeout);
     default: return finish(PathStatus::kNoSolution);
   }
-  auto* solution = pdef->getSolutionPath()->as<og::PathGeometric>();
-  const std::vector<ob::State*>& states = solution->getStates();
-  if (states.size() < 2) return finish(PathStatus::kNoSolution);
+  if (raw.size() < 2) return finish(PathStatus::kNoSolution);
 
-  // Greedy shortcutting: from each kept state jump to the farthest later
-  // state reachable by a collision-free straight motion.
+  // Greedy shortcutting: from each kept point jump to the farthest later
+  // point reachable by a collision-free straight motion.
   std::vector<size_t> kept{0};
-  const size_t n = states.size();
+  const size_t n = raw.size();
   while (kept.back() + 1 < n) {
     const size_t i = kept.back();
     size_t j = n - 1;
     if (config_.simplify) {
-      while (j > i + 1 && !impl_->si->checkMotion(states[i], states[j])) --j;
+      while (j > i + 1 && !impl_->motionFree(raw[i], raw[j])) --j;
     } else {
       j = i + 1;
     }
     kept.push_back(j);
   }
-  std::vector<Eigen::Vector3d> points;
-  for (size_t k : kept) points.push_back(toPoint(states[k]));
+  std::vector<Eigen::Vector3d> points;  // without repeats (a query point may already be a milestone)
+  for (size_t k : kept)
+    if (points.empty() || raw[k] != points.back()) points.push_back(raw[k]);
+  if (points.size() == 1) points.push_back(raw.back());
   std::vector<double> arc(points.size(), 0.0);
   for (size_t k = 1; k < points.size(); ++k) arc[k] = arc[k - 1] + (points[k] - points[k - 1]).norm();
   result.length = arc.back();
@@ -240,7 +380,13 @@ double PathPlanner::pathLength(const Eigen::Vector3d& start, const Eigen::Vector
   s << start, 0.0;
   g << goal, 0.0;
   const PathResult r = plan(s, g);
-  return hasPath(r.status) ? r.length : std::numeric_limits<double>::infinity();
+  return hasPath(r.status) ? r.length : kInf;
+}
+
+PathPlanner::DistanceOracle PathPlanner::distanceOracle() {
+  auto cache = std::make_shared<DistanceCache>();
+  Impl* impl = impl_.get();
+  return [impl, cache](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl->distance(cache.get(), a, b); };
 }
 
 }  // namespace surface_nbv

@@ -34,9 +34,39 @@ Status PlannerNodeConfig::validate() const {
   return Status::Ok();
 }
 
+namespace {
+
+// The explorer's keys, as the mission section of the scene's YAML names them
+// (nbv_mission reads the same section) and as private parameters.
+void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
+  r->get("match_radius", &e->match_radius);
+  r->get("reach_tolerance", &e->reach_tolerance);
+  r->get("max_failures", &e->max_failures);
+  r->get("max_visits", &e->max_visits);
+  r->get("blacklist_radius", &e->blacklist_radius);
+  r->get("always_full", &e->always_full);
+  r->get("full_on_leg_end", &e->full_on_leg_end);
+  r->get("travel_yaw", &e->travel_yaw);
+  r->get("turn_distance", &e->turn_distance);
+  r->get("min_visible", &e->min_visible);
+  r->get("max_leg_attempts", &e->max_leg_attempts);
+  r->get("path_distances", &e->path_distances);
+}
+
+}  // namespace
+
 Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);
+  reader.get("mission_namespace", &c->mission_namespace);
+  // The mission section first (the same settings as the headless runner),
+  // then the node's own parameters over it.
+  ParamReader mission((ros::NodeHandle(c->mission_namespace)));
+  readExplorerKeys(&mission, &c->explorer);
+  mission.get("path_iterations", &c->path.iteration_budget);
+  mission.get("path_time_budget", &c->path.time_budget);
+  if (Status st = mission.status(); !st) return st;
+  readExplorerKeys(&reader, &c->explorer);
   reader.get("world_frame", &c->world_frame);
   reader.get("replan_rate", &c->replan_rate);
   reader.get("speed", &c->speed);
@@ -51,12 +81,6 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("save_map_service", &c->save_map_service);
   reader.get("export_mesh_service", &c->export_mesh_service);
   reader.get("iteration_budget", &c->path.iteration_budget);
-  reader.get("match_radius", &c->explorer.match_radius);
-  reader.get("reach_tolerance", &c->explorer.reach_tolerance);
-  reader.get("max_failures", &c->explorer.max_failures);
-  reader.get("max_visits", &c->explorer.max_visits);
-  reader.get("blacklist_radius", &c->explorer.blacklist_radius);
-  reader.get("always_full", &c->explorer.always_full);
   reader.get("start_running", &c->start_running);
   reader.get("collision_radius", &c->path.collision_radius);
   reader.get("time_budget", &c->path.time_budget);

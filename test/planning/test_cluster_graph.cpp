@@ -7,6 +7,9 @@
 #include <limits>
 #include <random>
 
+#include "planning_test_worlds.h"
+#include "surface_nbv/planning/path_planner.h"
+
 using namespace surface_nbv;
 
 namespace {
@@ -236,4 +239,31 @@ TEST(ClusterGraph, BadInputIsRefused) {
   EXPECT_FALSE(ClusterGraph(f, Eigen::Vector4d::Zero(), DistanceFn()).status());
   f.clusters[0].viewpoints.push_back(99);
   EXPECT_FALSE(ClusterGraph(f, Eigen::Vector4d::Zero(), euclid).status());
+}
+
+// Entry q_l is the viewpoint closest by path length: behind the wall of
+// WallWorld (gap at y >= 1 m), the viewpoint nearer in straight line is the
+// farther one to fly to.
+TEST(ClusterGraph, EntryClosestByPathLengthWithThePlannerOracle) {
+  const WallWorld world(true);
+  PathPlannerConfig c;
+  c.iteration_budget = 3000;
+  c.seed = 7;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const Eigen::Vector4d uav(-4.0, -3.0, 2.5, 0.0);
+  const Eigen::Vector3d behind(2.0, -3.0, 2.5), through(3.5, 3.0, 2.5);
+  ASSERT_TRUE(hasPath(planner.plan(uav, Eigen::Vector4d(behind.x(), behind.y(), behind.z(), 0.0)).status));
+  ASSERT_TRUE(hasPath(planner.plan(uav, Eigen::Vector4d(through.x(), through.y(), through.z(), 0.0)).status));
+  Frontier f;
+  addCluster(f, {behind, through}, 1.0);
+  const ClusterGraph straight(f, uav, euclid);
+  ASSERT_TRUE(straight.status());
+  EXPECT_EQ(straight.edge(0, 1).l_viewpoint, 0u);
+  const ClusterGraph by_path(f, uav, planner.distanceOracle());
+  ASSERT_TRUE(by_path.status());
+  const ClusterEdge& e = by_path.edge(0, 1);
+  EXPECT_EQ(e.l_viewpoint, 1u);
+  EXPECT_TRUE(e.reachable);
+  EXPECT_GT(e.d_kl, (through - uav.head<3>()).norm());
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <tuple>
@@ -33,7 +34,7 @@ void expectCollisionFree(const CollisionMap& map, const PathResult& r, double ra
     const Eigen::Vector3d a = r.path[k].head<3>(), b = r.path[k + 1].head<3>();
     const double d = (b - a).norm();
     length += d;
-    const int steps = static_cast<int>(std::ceil(d / 0.1));
+    const int steps = std::max(1, static_cast<int>(std::ceil(d / 0.1)));
     for (int i = 0; i <= steps; ++i) {
       const Eigen::Vector3d p = a + (b - a) * (static_cast<double>(i) / steps);
       EXPECT_TRUE(map.isFree(p, radius)) << "segment " << k << " at " << p.transpose();
@@ -208,4 +209,167 @@ TEST(PathPlanner, RoadmapPersistsAndMapChangesAreRechecked) {
   const PathResult closed = planner.plan(kStart, kGoal);
   EXPECT_FALSE(hasPath(closed.status)) << toString(closed.status);
   EXPECT_TRUE(closed.path.empty());
+}
+
+namespace {
+
+// Valid query points on both sides of the wall, in a fixed pseudo-random order.
+std::vector<Eigen::Vector4d> queryPoints(const CollisionMap& map, size_t n, unsigned int seed) {
+  std::vector<Eigen::Vector4d> points;
+  unsigned int state = seed;
+  auto next = [&state] {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) / static_cast<double>(1u << 24);
+  };
+  while (points.size() < n) {
+    const Eigen::Vector4d p(-4.8 + 9.6 * next(), -4.8 + 9.6 * next(), 1.2 + 2.6 * next(), 0.0);
+    if (map.isFree(p.head<3>(), 1.2)) points.push_back(p);
+  }
+  return points;
+}
+
+PathPlannerConfig searchConfig(QuerySearch search) {
+  PathPlannerConfig c = seededConfig();
+  c.time_budget = 1e3;  // only the iterations bound it, so both grow alike
+  c.iteration_budget = 600;
+  c.search = search;
+  c.simplify = false;  // compare the roadmap paths themselves
+  return c;
+}
+
+}  // namespace
+
+// Our lazy A* and OMPL's LazyPRM::constructSolution, on roadmaps grown from
+// the same seed by the same queries, return the same path lengths and leave
+// the same roadmap, also across a map change that closes the gap.
+TEST(PathPlanner, FastSearchMatchesOmplSearch) {
+  WallWorld world(true);
+  PathPlanner fast(searchConfig(QuerySearch::kFast)), ompl(searchConfig(QuerySearch::kOmplSearch));
+  bool same = true;
+  ASSERT_TRUE(fast.setMap(&world.collision(), world.bounds()));
+  ASSERT_TRUE(ompl.setMap(&world.collision(), world.bounds()));
+  const std::vector<Eigen::Vector4d> points = queryPoints(world.collision(), 30, 3);
+  size_t paths = 0;
+  for (int phase = 0; phase < 2; ++phase) {
+    for (size_t i = 0; i + 1 < points.size(); i += 2) {
+      const PathResult a = fast.plan(points[i], points[i + 1]), b = ompl.plan(points[i], points[i + 1]);
+      ASSERT_EQ(a.status, b.status) << "query " << i << " phase " << phase;
+      EXPECT_NEAR(a.length, b.length, 1e-9) << "query " << i << " phase " << phase;
+      if (same) {
+        EXPECT_EQ(fast.roadmapVertices(), ompl.roadmapVertices()) << "query " << i << " phase " << phase;
+      }
+      same = same && fast.roadmapVertices() == ompl.roadmapVertices();
+      if (hasPath(a.status)) {
+        expectCollisionFree(world.collision(), a, 1.0);
+        ++paths;
+      }
+    }
+    world.closeGap();
+    fast.mapChanged();
+    ompl.mapChanged();
+  }
+  EXPECT_GT(paths, 15u);
+}
+
+// A kept roadmap routes through the gap; a box then blocks the part of the
+// gap the path used: after mapChanged() the query re-checks the cached
+// edges and goes around through what is left of the gap.
+TEST(PathPlanner, BlockedEdgeIsRecheckedAndAvoided) {
+  WallWorld world(true);
+  PathPlanner planner(seededConfig());
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const Eigen::Vector4d start(-4.0, 2.0, 2.5, 0.0), goal(4.0, 2.0, 2.5, 0.0);
+  const PathResult first = planner.plan(start, goal);
+  ASSERT_EQ(first.status, PathStatus::kExactSolution);
+  const PathResult again = planner.plan(start, goal);
+  ASSERT_EQ(again.status, PathStatus::kExactSolution);
+  EXPECT_NEAR(again.length, first.length, 0.5);
+  world.addBox(Eigen::Vector3d(-0.5, 0.5, 0.0), Eigen::Vector3d(0.5, 2.75, 5.0));
+  planner.mapChanged();
+  const size_t vertices = planner.roadmapVertices();
+  const PathResult around = planner.plan(start, goal);
+  ASSERT_EQ(around.status, PathStatus::kExactSolution) << toString(around.status);
+  expectCollisionFree(world.collision(), around, 1.0);
+  EXPECT_GT(around.length, first.length);
+  EXPECT_GE(planner.roadmapVertices() + 10, vertices);  // kept, not rebuilt
+  for (size_t k = 0; k + 1 < around.path.size(); ++k) {
+    const Eigen::Vector3d a = around.path[k].head<3>(), b = around.path[k + 1].head<3>();
+    if ((a.x() < 0.0) != (b.x() < 0.0)) {
+      EXPECT_GT((a + (-a.x() / (b.x() - a.x())) * (b - a)).y(), 2.75 + 1.0);
+    }
+  }
+}
+
+TEST(PathPlanner, SameSeedSameQueriesRepeatExactly) {
+  const WallWorld world(true);
+  const std::vector<Eigen::Vector4d> points = queryPoints(world.collision(), 12, 5);
+  std::vector<std::vector<Eigen::Vector4d>> runs[2];
+  for (auto& run : runs) {
+    PathPlanner planner(seededConfig());
+    ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+    for (size_t i = 0; i + 1 < points.size(); ++i) run.push_back(planner.plan(points[i], points[i + 1]).path);
+  }
+  EXPECT_EQ(runs[0], runs[1]);
+}
+
+// With the wall closed no query succeeds; each plan() adds its start and
+// goal and at most iteration_budget samples, the same on every run.
+TEST(PathPlanner, IterationBudgetBoundsTheRoadmapGrowth) {
+  const WallWorld world(false);
+  size_t grown[2] = {0, 0};
+  for (size_t& g : grown) {
+    PathPlannerConfig c = seededConfig();
+    c.iteration_budget = 200;
+    PathPlanner planner(c);
+    ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+    for (int i = 0; i < 3; ++i) {
+      const size_t before = planner.roadmapVertices();
+      EXPECT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kNoSolution);
+      EXPECT_LE(planner.roadmapVertices(), before + 200 + 2);
+      EXPECT_GT(planner.roadmapVertices(), before + 100);
+    }
+    g = planner.roadmapVertices();
+  }
+  EXPECT_EQ(grown[0], grown[1]);
+}
+
+TEST(PathPlannerOracle, StraightWhenFreeLongerAroundTheWall) {
+  const WallWorld world(true);
+  PathPlanner planner(seededConfig());
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  ASSERT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kExactSolution);
+  const auto oracle = planner.distanceOracle();
+  const Eigen::Vector3d a = kStart.head<3>(), b = kGoal.head<3>();
+  const double around = oracle(a, b);
+  EXPECT_TRUE(std::isfinite(around));
+  // Through the gap (y >= 1 m plus the radius) on both sides of the wall.
+  EXPECT_GT(around, 2.0 * std::hypot(4.0, 5.0));
+  EXPECT_EQ(oracle(b, a), around);
+  EXPECT_EQ(oracle(a, a), 0.0);
+  const Eigen::Vector3d same_side(-3.0, 2.0, 3.0);
+  EXPECT_NEAR(oracle(a, same_side), (a - same_side).norm(), 1e-12);
+  // Never below the straight line, on pairs on either side.
+  const std::vector<Eigen::Vector4d> points = queryPoints(world.collision(), 30, 9);
+  size_t finite = 0;
+  for (size_t i = 0; i + 1 < points.size(); ++i) {
+    const double d = oracle(points[i].head<3>(), points[i + 1].head<3>());
+    EXPECT_GE(d, (points[i] - points[i + 1]).head<3>().norm() - 1e-12);
+    finite += std::isfinite(d);
+  }
+  EXPECT_GT(finite, points.size() / 2);
+}
+
+TEST(PathPlannerOracle, InfiniteAcrossAClosedWall) {
+  const WallWorld world(false);
+  PathPlannerConfig c = seededConfig();
+  c.iteration_budget = 1500;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  EXPECT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kNoSolution);  // grows the roadmap on both sides
+  const auto oracle = planner.distanceOracle();
+  EXPECT_TRUE(std::isinf(oracle(kStart.head<3>(), kGoal.head<3>())));
+  EXPECT_TRUE(std::isinf(oracle(kGoal.head<3>(), kStart.head<3>())));
+  const Eigen::Vector3d left(-4.0, 3.0, 2.5), right(4.0, 3.0, 2.5);
+  EXPECT_TRUE(std::isinf(oracle(left, right)));
+  EXPECT_NEAR(oracle(kStart.head<3>(), left), 6.0, 1e-12);
 }

@@ -22,8 +22,8 @@
 // counts a failure at its place; after max_failures failures, or after
 // max_visits visits that left it in the frontier, every viewpoint within
 // blacklist_radius of that place is ignored from then on and reported.
-// Distances inside the cluster graph are straight lines (the graph needs
-// O(clusters x viewpoints) of them); legs are real paths.
+// Distances inside the cluster graph are straight lines, or with
+// path_distances the planner's path-length oracle; legs are real paths.
 // Deterministic for a seed and iteration-bounded path planning. Not thread-safe.
 #pragma once
 
@@ -57,6 +57,10 @@ struct ExplorerConfig {
   double turn_distance = 2.0;     // m
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
+  // Cluster-graph distances (q_l closest by path length): true uses the path
+  // planner's oracle (straight line when free, else the roadmap's path
+  // length, +inf when it connects nothing); false, straight lines.
+  bool path_distances = false;
 
   // Names the first bad key.
   Status validate() const;

@@ -1,6 +1,7 @@
 // Parameters of nbv_planner. From the shared namespace: voxel_size, w_th,
 // bounds_min, bounds_max (the mirrored map) and lambda_tc, lambda_ic (eq. 5),
-// one copy for every node; the rest are the node's own (~). Unknown private
+// one copy for every node; the explorer's settings from the mission section
+// (mission_namespace); the rest are the node's own (~). Unknown private
 // keys are refused.
 #pragma once
 
@@ -17,6 +18,10 @@ namespace surface_nbv {
 
 struct PlannerNodeConfig {
   std::string shared_namespace = "/nbv";
+  // The explorer's keys (travel_yaw, reach_tolerance, ...) and the path
+  // budget (path_iterations, path_time_budget) of the YAML's mission section,
+  // which nbv_mission reads too; private parameters override them.
+  std::string mission_namespace = "/mission";
   TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
   ExplorerConfig explorer;        // graph.lambda_tc, graph.lambda_ic from the shared namespace; the rest ~
   PathPlannerConfig path;         // collision_radius, time_budget, seed of the PRM
