@@ -83,6 +83,10 @@ Status MissionConfig::validate() const {
   if (!positive(yaw_rate) || yaw_rate > 5.0) return Status::Error("mission/yaw_rate expected in (0, 5] rad/s");
   if (!positive(frame_rate) || frame_rate > 100.0) return Status::Error("mission/frame_rate expected in (0, 100] Hz");
   if (!positive(frontier_period)) return Status::Error("mission/frontier_period expected > 0");
+  if (!(leg_lookahead >= 0.0) || leg_lookahead > 60.0) return Status::Error("mission/leg_lookahead expected in [0, 60] s");
+  if (!(leg_yaw_tolerance > 0.0) || leg_yaw_tolerance > M_PI) {
+    return Status::Error("mission/leg_yaw_tolerance expected in (0, pi] rad");
+  }
   if (!positive(max_flight_time)) return Status::Error("mission/max_flight_time expected > 0");
   if (!(start_free_radius >= 0.0) || start_free_radius > 10.0) {
     return Status::Error("mission/start_free_radius expected in [0, 10] m");
@@ -142,6 +146,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("yaw_rate", &c->yaw_rate);
   m.get("frame_rate", &c->frame_rate);
   m.get("frontier_period", &c->frontier_period);
+  m.get("leg_lookahead", &c->leg_lookahead);
+  m.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   m.get("max_flight_time", &c->max_flight_time);
   m.get("start_free_radius", &c->start_free_radius);
   m.get("start_spin", &c->start_spin);
@@ -162,6 +168,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("turn_distance", &c->explorer.turn_distance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("path_distances", &c->explorer.path_distances);
+  m.get("check_reachable", &c->explorer.check_reachable);
   m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
   std::string policy = toString(c->tsdf.invalid_pixels);
   m.get("invalid_pixels", &policy);

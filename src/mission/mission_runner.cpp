@@ -35,6 +35,19 @@ Trajectory legTrajectory(const std::vector<Eigen::Vector4d>& path, const UavStat
   return timeWaypoints(waypoints, t0, speed, yaw_rate);
 }
 
+// Whether the tracker's leg is over for planning: finished, or (lookahead > 0)
+// nearly over with the UAV already at its end (see MissionConfig).
+bool legEnded(const TrackerSim& tracker, double lookahead, double reach, double yaw_tolerance) {
+  if (tracker.mode() == TrackerMode::kFinished) return true;
+  if (lookahead <= 0.0 || tracker.mode() != TrackerMode::kTracking || tracker.trajectory().points().empty()) {
+    return false;
+  }
+  const TrajectoryPoint& end = tracker.trajectory().points().back();
+  const UavState& s = tracker.state();
+  return tracker.time() + lookahead >= end.t && (s.p_W - end.p_W).norm() <= reach &&
+         std::abs(wrapAngle(s.yaw - end.yaw)) <= yaw_tolerance;
+}
+
 }  // namespace
 
 MissionRunner::MissionRunner(const MissionConfig& config, const RaycastScene& scene)
@@ -153,7 +166,8 @@ MissionResult MissionRunner::run() {
     result.flown.push_back(uav);
     result.flown_t.push_back(tracker.time());
 
-    const bool leg_finished = tracker.mode() == TrackerMode::kFinished;
+    const bool leg_finished =
+        legEnded(tracker, c.leg_lookahead, c.explorer.reach_tolerance, c.leg_yaw_tolerance);
     if (spinning && leg_finished) {
       spinning = false;
       next_frontier = tracker.time();

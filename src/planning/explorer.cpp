@@ -108,6 +108,8 @@ Explorer::Explorer(const ExplorerConfig& config, const PathPlannerConfig& path_c
 Status Explorer::setMap(const CollisionMap* map, const AlignedBox& bounds) {
   if (Status s = planner_.setMap(map, bounds); !s) return s;
   map_ = map;
+  bounds_ = bounds;
+  reach_filled_ = false;
   return Status::Ok();
 }
 
@@ -301,6 +303,18 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   }
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     const Eigen::Vector4d target = tour_.front();
+    if (config_.check_reachable && map_ != nullptr) {
+      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), collision_radius_);
+      reach_filled_ = true;
+      if (!reach_.reachable(target.head<3>())) {
+        countFailure(target.head<3>());
+        ++stats_.leg_failures;
+        ++stats_.unreachable_skipped;
+        tour_.erase(tour_.begin());
+        --attempt;  // cheap: does not use up an attempt (the tour shrinks)
+        continue;
+      }
+    }
     PathResult leg = planner_.plan(from, target);
     // The frontier's clearance test and the planner's (radius plus half a
     // motion-check step) differ slightly: a target just inside the planner's

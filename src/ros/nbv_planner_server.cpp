@@ -267,7 +267,11 @@ void NbvPlannerServer::onTimer(const ros::WallTimerEvent&) {
       return;
     }
   }
-  const bool leg_ended = have_leg_ && now >= leg_end_ + ros::Duration(config_.leg_settle);
+  const bool at_goal = config_.leg_lookahead > 0.0 && !leg_is_spin_ &&
+                       now + ros::Duration(config_.leg_lookahead) >= leg_end_ &&
+                       (uav_.head<3>() - leg_goal_.head<3>()).norm() <= config_.explorer.reach_tolerance &&
+                       std::abs(wrapAngle(uav_.w() - leg_goal_.w())) <= config_.leg_yaw_tolerance;
+  const bool leg_ended = have_leg_ && (now >= leg_end_ + ros::Duration(config_.leg_settle) || at_goal);
   if (leg_ended && leg_is_spin_) have_leg_ = leg_is_spin_ = false;
   if (leg_is_spin_) return;
   const bool recovering = state_ == State::kHovering && (reason_ == "odometry_stale" || reason_ == "map_stale");
@@ -301,6 +305,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
       std::vector<Eigen::Vector4d> points{uav_};
       points.insert(points.end(), d.path.begin(), d.path.end());
       leg_end_ = ros::Time::now() + ros::Duration(publishTrajectory(resamplePath(points, config_.trajectory_spacing)));
+      leg_goal_ = points.back();
       have_leg_ = true;
       state_ = State::kRunning;
       break;

@@ -25,6 +25,10 @@ Status PlannerNodeConfig::validate() const {
   if (!std::isfinite(trajectory_spacing) || trajectory_spacing <= 0.0) {
     return Status::Error("trajectory_spacing expected > 0");
   }
+  if (!(leg_lookahead >= 0.0) || leg_lookahead > 60.0) return Status::Error("leg_lookahead expected in [0, 60] s");
+  if (!(leg_yaw_tolerance > 0.0) || leg_yaw_tolerance > M_PI) {
+    return Status::Error("leg_yaw_tolerance expected in (0, pi] rad");
+  }
   if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("start_spin expected in [0, 20] rad");
   if (!(leg_settle >= 0.0) || leg_settle > 60.0) return Status::Error("leg_settle expected in [0, 60] s");
   if (!(odometry_timeout > 0.0) || !std::isfinite(odometry_timeout)) return Status::Error("odometry_timeout expected > 0");
@@ -51,6 +55,7 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("min_visible", &e->min_visible);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
+  r->get("check_reachable", &e->check_reachable);
 }
 
 }  // namespace
@@ -65,6 +70,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readExplorerKeys(&mission, &c->explorer);
   mission.get("path_iterations", &c->path.iteration_budget);
   mission.get("path_time_budget", &c->path.time_budget);
+  mission.get("leg_lookahead", &c->leg_lookahead);
+  mission.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   if (Status st = mission.status(); !st) return st;
   readExplorerKeys(&reader, &c->explorer);
   reader.get("world_frame", &c->world_frame);
@@ -74,6 +81,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("trajectory_spacing", &c->trajectory_spacing);
   reader.get("start_spin", &c->start_spin);
   reader.get("leg_settle", &c->leg_settle);
+  reader.get("leg_lookahead", &c->leg_lookahead);
+  reader.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   reader.get("odometry_timeout", &c->odometry_timeout);
   reader.get("map_timeout", &c->map_timeout);
   reader.get("report_directory", &c->report_directory);

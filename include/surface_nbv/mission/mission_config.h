@@ -43,6 +43,13 @@ struct MissionConfig {
   double yaw_rate = 1.0;           // reference yaw rate [rad/s] (the tracker's limit)
   double frame_rate = 5.0;         // depth frames integrated per flight second
   double frontier_period = 4.0;    // flight seconds between frontier updates on a leg
+  // A leg ends (and the next is planned) once its reference has less than
+  // this many seconds left and the UAV is within the explorer's
+  // reach_tolerance of its end, facing its yaw to within leg_yaw_tolerance:
+  // the UAV flies on instead of stopping at every viewpoint. 0: a leg ends
+  // when its reference does.
+  double leg_lookahead = 0.0;      // s
+  double leg_yaw_tolerance = 0.35; // rad
   double max_flight_time = 5400.0; // the mission stops there [s]
   double start_free_radius = 3.0;  // the take-off ball is free space [m]
   double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]

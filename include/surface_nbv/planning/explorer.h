@@ -32,6 +32,7 @@
 
 #include "surface_nbv/planning/cluster_graph.h"
 #include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/planning/reachable_space.h"
 #include "surface_nbv/surface/frontier.h"
 
 namespace surface_nbv {
@@ -61,6 +62,10 @@ struct ExplorerConfig {
   // planner's oracle (straight line when free, else the roadmap's path
   // length, +inf when it connects nothing); false, straight lines.
   bool path_distances = false;
+  // Before a leg is planned, the target must lie in the UAV's connected free
+  // space (ReachableSpace, filled once per map version); one that does not
+  // counts a failure at once instead of costing the planner its budget.
+  bool check_reachable = false;
 
   // Names the first bad key.
   Status validate() const;
@@ -117,6 +122,7 @@ struct ExplorerStats {
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
   size_t tour_viewpoints = 0, clusters = 0;
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
+  size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -129,7 +135,10 @@ class Explorer {
   // The collision map legs are planned in (not owned) and the sampling bounds.
   Status setMap(const CollisionMap* map, const AlignedBox& bounds);
   // The collision map was updated: path validity is re-checked lazily.
-  void mapChanged() { planner_.mapChanged(); }
+  void mapChanged() {
+    planner_.mapChanged();
+    reach_filled_ = false;
+  }
 
   // A new frontier (built on the current map), the UAV's configuration, and
   // whether the current leg has ended (the tracker finished it).
@@ -178,6 +187,9 @@ class Explorer {
 
   ExplorerConfig config_;
   PathPlanner planner_;
+  AlignedBox bounds_;
+  ReachableSpace reach_;
+  bool reach_filled_ = false;  // for the current map version
   const CollisionMap* map_ = nullptr;
   double collision_radius_ = 1.0;
   std::vector<Eigen::Vector4d> tour_;   // front = current target while have_target_

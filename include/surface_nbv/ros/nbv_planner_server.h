@@ -100,6 +100,7 @@ class NbvPlannerServer {
   bool have_leg_ = false;          // a trajectory is being flown
   bool leg_is_spin_ = false;
   ros::Time leg_end_;
+  Eigen::Vector4d leg_goal_ = Eigen::Vector4d::Zero();  // the leg's last point
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
 };

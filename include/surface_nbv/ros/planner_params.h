@@ -34,6 +34,12 @@ struct PlannerNodeConfig {
   bool start_running = false;     // true: RUNNING from the start, else waits for ~start
   double start_spin = 6.2832;     // rad turned in place at the first start, before the first plan
   double leg_settle = 0.5;        // s after a leg's last point before the leg counts as ended
+  // The leg also ends this many seconds before its last point when the UAV
+  // is within the explorer's reach_tolerance of it, facing its yaw to within
+  // leg_yaw_tolerance: it flies on instead of stopping (as nbv_mission's
+  // mission/leg_lookahead). 0: only by leg_settle.
+  double leg_lookahead = 0.0;     // s
+  double leg_yaw_tolerance = 0.35;  // rad
   double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
   double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
   std::string report_directory;   // where DONE writes mission_report.json; empty = nowhere

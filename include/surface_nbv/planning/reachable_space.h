@@ -1,0 +1,51 @@
+// The part of a CollisionMap's free space connected to a point: a flood
+// fill over the cells (6-connected) whose centre is at least
+// radius - half a cell diagonal from the nearest obstacle. Any point the
+// path planner accepts (clearance > radius) lies in such a cell, and a
+// collision-free path only crosses such cells, so the filled set holds every
+// point the planner can reach from the start: a target outside it has no
+// path, and the planner need not spend its iteration budget to learn that.
+// The explorer fills once per map version, before the first leg it plans.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "surface_nbv/common.h"
+#include "surface_nbv/map/collision_map.h"
+
+namespace surface_nbv {
+
+class ReachableSpace {
+ public:
+  // Fills from the cell of `from` (or, if that cell is not clear, from the
+  // clear cells within `seed_radius` of it). `bounds` are the map's: cell
+  // (i, j, k) covers bounds.min + cellSize * [i, i + 1) and so on. Without a
+  // clear seed cell nothing is known: reachable() then answers true.
+  void fill(const CollisionMap& map, const AlignedBox& bounds, const Eigen::Vector3d& from, double radius,
+            double seed_radius = 2.0);
+  // Whether p's cell, or one of its 6 neighbours, was filled (true when the
+  // last fill found no seed; false outside the grid).
+  bool reachable(const Eigen::Vector3d& p) const;
+  // Cells filled by the last fill.
+  size_t size() const { return filled_; }
+  bool seeded() const { return seeded_; }
+
+ private:
+  bool cellOf(const Eigen::Vector3d& p, Eigen::Vector3i* cell) const;
+  size_t index(const Eigen::Vector3i& c) const {
+    return static_cast<size_t>(c.x()) +
+           static_cast<size_t>(cells_.x()) * (static_cast<size_t>(c.y()) + static_cast<size_t>(cells_.y()) * c.z());
+  }
+
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();
+  double cell_ = 1.0;
+  std::vector<uint8_t> in_;  // 1: filled
+  size_t filled_ = 0;
+  bool seeded_ = false;
+};
+
+}  // namespace surface_nbv
