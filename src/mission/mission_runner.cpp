@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_integrator.h"
@@ -47,6 +48,9 @@ bool legEnded(const TrackerSim& tracker, double lookahead, double reach, double 
   return tracker.time() + lookahead >= end.t && (s.p_W - end.p_W).norm() <= reach &&
          std::abs(wrapAngle(s.yaw - end.yaw)) <= yaw_tolerance;
 }
+
+// A decision slower than this (wall) is reported on stderr as it happens.
+constexpr double kSlowDecisionMs = 3000.0;
 
 }  // namespace
 
@@ -193,6 +197,11 @@ MissionResult MissionRunner::run() {
     result.times.tour += d.timings.tour_ms;
     result.times.path += d.timings.path_ms;
     result.max_plan_ms = std::max(result.max_plan_ms, d.timings.total_ms);
+    if (d.timings.total_ms > kSlowDecisionMs) {
+      std::fprintf(stderr, "  slow decision at %.0f s of flight: %.1f s wall (%s, %s) at [%.1f %.1f %.1f], %zu failed legs so far: %s\n",
+                   tracker.time(), 1e-3 * d.timings.total_ms, toString(d.action), toString(d.reason), uav.x(), uav.y(),
+                   uav.z(), explorer.stats().leg_failures, d.message.c_str());
+    }
     next_frontier = tracker.time() + c.frontier_period;
 
     MissionEvent event;

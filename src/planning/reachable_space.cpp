@@ -16,14 +16,14 @@ bool ReachableSpace::cellOf(const Eigen::Vector3d& p, Eigen::Vector3i* cell) con
 }
 
 void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, const Eigen::Vector3d& from,
-                          double radius, double seed_radius) {
+                          double radius, double slack, double seed_radius) {
   origin_ = bounds.min;
   cells_ = map.gridCells();
   cell_ = map.cellSize();
   in_.assign(static_cast<size_t>(cells_.prod()), 0);
   filled_ = 0;
   seeded_ = false;
-  const double clear = radius - 0.5 * std::sqrt(3.0) * cell_;
+  const double clear = radius - slack;
   auto open = [&](const Eigen::Vector3i& c) {
     return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && in_[index(c)] == 0 &&
            map.cellCentreDistance(c) >= clear;

@@ -19,6 +19,7 @@ Status MapperConfig::validate() const {
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   if (map_directory.empty()) return Status::Error("map_directory expected a directory");
   if (max_pending_frames < 1 || max_pending_frames > 1000) return Status::Error("max_pending_frames expected in [1, 1000]");
+  if (input_queue < 1 || input_queue > 1000) return Status::Error("input_queue expected in [1, 1000]");
   if (!std::isfinite(tf_wait) || tf_wait < 0.0 || tf_wait > 10.0) return Status::Error("tf_wait expected in [0, 10] s");
   if (!(autosave_period >= 0.0) || !std::isfinite(autosave_period)) return Status::Error("autosave_period expected >= 0 s");
   if (!(start_free_radius >= 0.0) || start_free_radius > 10.0) {
@@ -62,6 +63,7 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   reader.get("stats_period", &c->stats_period);
   reader.get("map_directory", &c->map_directory);
   reader.get("max_pending_frames", &c->max_pending_frames);
+  reader.get("input_queue", &c->input_queue);
   reader.get("tf_wait", &c->tf_wait);
   // Shared with nbv_mission: mission/start_free_radius, unless ~start_free_radius is given.
   ros::param::get("/mission/start_free_radius", c->start_free_radius);

@@ -30,10 +30,10 @@ TsdfMapperServer::TsdfMapperServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       tf_listener_(tf_buffer_),
       stats_(nh_, "tsdf/stats", "tsdf_mapper", config.stats_period) {
   if (config_.input == "image") {
-    info_sub_ = nh_.subscribe("depth/camera_info", 5, &TsdfMapperServer::onCameraInfo, this);
-    image_sub_ = nh_.subscribe("depth/image", 5, &TsdfMapperServer::onImage, this);
+    info_sub_ = nh_.subscribe("depth/camera_info", config_.input_queue, &TsdfMapperServer::onCameraInfo, this);
+    image_sub_ = nh_.subscribe("depth/image", config_.input_queue, &TsdfMapperServer::onImage, this);
   } else {
-    points_sub_ = nh_.subscribe("depth/points", 5, &TsdfMapperServer::onPoints, this);
+    points_sub_ = nh_.subscribe("depth/points", config_.input_queue, &TsdfMapperServer::onPoints, this);
   }
   update_pub_ = nh_.advertise<surface_nbv::TsdfUpdate>(
       "tsdf/update", 10, [this](const ros::SingleSubscriberPublisher&) { snapshot_requested_ = true; });

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "planning_test_worlds.h"
 #include "surface_nbv/planning/path_planner.h"
 
@@ -53,7 +55,8 @@ TEST(ReachableSpace, EveryPointOfAPlannedPathIsInside) {
   const PathResult r = planner.plan(a, b);
   ASSERT_TRUE(hasPath(r.status));
   ReachableSpace space;
-  space.fill(world.collision(), world.bounds(), a.head<3>(), 1.0);
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * world.collision().cellSize();
+  space.fill(world.collision(), world.bounds(), a.head<3>(), 1.0, half_diagonal);
   for (size_t i = 1; i < r.path.size(); ++i) {
     const Eigen::Vector3d p = r.path[i - 1].head<3>(), q = r.path[i].head<3>();
     for (int s = 0; s <= 20; ++s) {
@@ -67,7 +70,7 @@ TEST(ReachableSpace, NoClearSeedMeansNothingIsKnown) {
   WallWorld world(false);
   ReachableSpace space;
   // Inside the wall, and no clear cell within 0.1 m: every answer is true.
-  space.fill(world.collision(), world.bounds(), Eigen::Vector3d(0.0, -3.0, 2.5), 1.0, 0.1);
+  space.fill(world.collision(), world.bounds(), Eigen::Vector3d(0.0, -3.0, 2.5), 1.0, 0.0, 0.1);
   EXPECT_FALSE(space.seeded());
   EXPECT_TRUE(space.reachable(Eigen::Vector3d(3.0, -3.0, 2.5)));
   // With the default seed radius the nearest clear cells start the fill.

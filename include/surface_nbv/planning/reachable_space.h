@@ -1,11 +1,13 @@
 // The part of a CollisionMap's free space connected to a point: a flood
-// fill over the cells (6-connected) whose centre is at least
-// radius - half a cell diagonal from the nearest obstacle. Any point the
-// path planner accepts (clearance > radius) lies in such a cell, and a
-// collision-free path only crosses such cells, so the filled set holds every
-// point the planner can reach from the start: a target outside it has no
-// path, and the planner need not spend its iteration budget to learn that.
-// The explorer fills once per map version, before the first leg it plans.
+// fill over the cells (6-connected) whose centre is at least radius - slack
+// from the nearest obstacle. With slack = half a cell diagonal it is a
+// superset of what the path planner can reach (any point it accepts, with
+// clearance > radius, lies in such a cell, and a collision-free path only
+// crosses such cells); with slack 0 (the explorer's choice) it leaves out
+// passages within a few centimetres of the planner's limit, which the PRM
+// rarely finds within its budget anyway, and so it tells at once that a
+// target behind them is not worth the planner's iteration budget. The
+// explorer fills once per map version, before the first leg it plans.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +27,7 @@ class ReachableSpace {
   // (i, j, k) covers bounds.min + cellSize * [i, i + 1) and so on. Without a
   // clear seed cell nothing is known: reachable() then answers true.
   void fill(const CollisionMap& map, const AlignedBox& bounds, const Eigen::Vector3d& from, double radius,
-            double seed_radius = 2.0);
+            double slack = 0.0, double seed_radius = 2.0);
   // Whether p's cell, or one of its 6 neighbours, was filled (true when the
   // last fill found no seed; false outside the grid).
   bool reachable(const Eigen::Vector3d& p) const;

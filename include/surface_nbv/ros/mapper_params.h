@@ -23,6 +23,9 @@ struct MapperConfig {
   double stats_period = 1.0;      // s
   std::string map_directory = "/tmp/surface_nbv_maps";
   int max_pending_frames = 10;    // frames waiting for their transform
+  // Depth messages roscpp holds while the mapper is busy; beyond it the oldest
+  // are dropped unseen. Bag replay wants more than a live camera (map_bag.launch).
+  int input_queue = 5;
   double tf_wait = 0.5;           // s a frame may wait for its transform
   double start_free_radius = 0.0; // m: unknown voxels this close to the first sensor pose become free (0 = off)
   double autosave_period = 0.0;   // s (wall) between autosaves to map_directory/autosave_{0,1}.tsdf; 0 = off
