@@ -72,6 +72,7 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
+  if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
 }
 
@@ -391,6 +392,14 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     tour_.erase(tour_.begin());
     have_target_ = false;
     path_.clear();
+  }
+  seen_ises_ = seen_ises_ || !frontier.ises.empty();
+  if (!seen_ises_ && ++empty_updates_ < config_.empty_updates_before_done) {
+    d.action = ExplorerAction::kHover;
+    d.message = "no surface observed yet (" + std::to_string(empty_updates_) + " empty frontier(s))";
+    d.timings.total_ms = msSince(t0);
+    stats_.last = d.timings;
+    return d;
   }
   if (frontier.complete()) {
     tour_.clear();

@@ -71,6 +71,24 @@ TEST(Explorer, CompleteFrontierEndsTheMission) {
   EXPECT_NE(d.message.find("1 in C_rem"), std::string::npos) << d.message;
 }
 
+TEST(Explorer, EmptyFirstFrontiersHoverBeforeTheyEndTheMission) {
+  WallWorld world(true);
+  ExplorerConfig config;
+  config.empty_updates_before_done = 3;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  // A map that has seen nothing: no ISE at all is not a finished mission.
+  EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kHover);
+  EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kHover);
+  EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kDone);
+  // Once an ISE was seen, an empty frontier is complete at once.
+  Explorer seen(config, pathConfig());
+  ASSERT_TRUE(seen.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision first = seen.update(makeFrontier({{Eigen::Vector3d(-2.0, -3.0, 2.5)}}), kUav, false);
+  EXPECT_EQ(first.action, ExplorerAction::kFly);
+  EXPECT_EQ(seen.update(Frontier(), kUav, false).action, ExplorerAction::kDone);
+}
+
 TEST(Explorer, FirstFrontierPlansTheTourAndAFreeLegToItsFirstViewpoint) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());

@@ -66,6 +66,10 @@ struct ExplorerConfig {
   // space (ReachableSpace, filled once per map version); one that does not
   // counts a failure at once instead of costing the planner its budget.
   bool check_reachable = false;
+  // A frontier without any ISE before any ISE was ever seen is a map that
+  // has seen nothing yet (a late first frame), not a finished mission: the
+  // explorer hovers through this many such frontiers before it says complete.
+  int empty_updates_before_done = 10;
 
   // Names the first bad key.
   Status validate() const;
@@ -196,6 +200,8 @@ class Explorer {
   std::vector<Eigen::Vector4d> path_;   // current leg
   bool have_target_ = false;
   bool requested_ = false;
+  bool seen_ises_ = false;      // some frontier held an ISE
+  int empty_updates_ = 0;       // frontiers without ISEs while !seen_ises_
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
