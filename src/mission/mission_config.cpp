@@ -169,6 +169,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("min_visible", &c->explorer.min_visible);
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);
+  m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);
   m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
   std::string policy = toString(c->tsdf.invalid_pixels);
   m.get("invalid_pixels", &policy);

@@ -56,6 +56,7 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
   r->get("check_reachable", &e->check_reachable);
+  r->get("empty_updates_before_done", &e->empty_updates_before_done);
 }
 
 }  // namespace
