@@ -248,8 +248,10 @@ Status replayBag(const ReplaySettings& s, const std::string& name, TsdfMap* map)
   } else {
     // Frames may still wait for their transform (tf_wait): let them land.
     ros::WallDuration(2.0).sleep();
-    const std::string save = "ROS_MASTER_URI=" + master + " rosservice call /tsdf_mapper/save_map \"path: '" + name +
-                             "'\" >> " + log + " 2>&1";
+    // catkin's cached test environment may carry an empty PYTHONPATH (it is
+    // written before the devel space holds Python messages): name it here.
+    const std::string save = "PYTHONPATH=" NBV_DEVEL_PYTHONPATH ":${PYTHONPATH:-} ROS_MASTER_URI=" + master +
+                             " rosservice call /tsdf_mapper/save_map \"path: '" + name + "'\" >> " + log + " 2>&1";
     if (std::system(save.c_str()) != 0) status = Status::Error(name + ": rosservice call failed, see " + log);
   }
   stopGroup(launch, 30.0);

@@ -118,8 +118,11 @@ TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
   srv.request.path = "box_loop_test.ply";
   ASSERT_TRUE(export_mesh.call(srv));
   ASSERT_EQ(srv.response.code, 0) << srv.response.message;
+  // The mesh lands in the mapper's map_directory (explore_sim.launch sets it to out_dir).
+  std::string directory;
+  ASSERT_TRUE(nh.getParam("tsdf_mapper/map_directory", directory)) << "tsdf_mapper/map_directory is not set";
   TriangleMesh mesh;
-  ASSERT_TRUE(loadMesh("/tmp/surface_nbv_maps/box_loop_test.ply", MeshLoadOptions(), &mesh).ok());
+  ASSERT_TRUE(loadMesh(directory + "/box_loop_test.ply", MeshLoadOptions(), &mesh).ok()) << directory;
   ASSERT_GT(mesh.numTriangles(), 500u);
   double worst = 0.0;
   size_t within_voxel = 0;
