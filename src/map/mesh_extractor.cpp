@@ -148,6 +148,9 @@ int padIndex(int x, int y, int z) { return x + kPad * (y + kPad * z); }
 BlockMesh MeshExtractor::meshBlock(const TsdfMap& map, const Eigen::Vector3i& block) {
   BlockMesh out;
   out.block = block;
+  // Meshed voxels: w >= w_th, or w > mesh_min_weight when that is set (>= 0).
+  const float mesh_min = map.config().mesh_min_weight;
+  const bool use_w_th = mesh_min < 0.0f;
   const float w_th = map.config().w_th;
   std::array<float, kPad * kPad * kPad> phi;
   std::array<uint8_t, kPad * kPad * kPad> known;
@@ -164,7 +167,7 @@ BlockMesh MeshExtractor::meshBlock(const TsdfMap& map, const Eigen::Vector3i& bl
               const TsdfVoxel& v = source->at(x, y, z);
               const int p = padIndex(x + ox * kBlockSize, y + oy * kBlockSize, z + oz * kBlockSize);
               phi[p] = v.phi;
-              known[p] = v.w >= w_th;
+              known[p] = use_w_th ? v.w >= w_th : v.w > mesh_min;
             }
           }
         }

@@ -26,6 +26,7 @@ Status TsdfConfig::validate() const {
   if (!std::isfinite(truncation) || truncation < 0.0) return Status::Error("truncation expected >= 0 (0 = 3 voxels)");
   if (truncation > 0.0 && truncation < voxel_size) return Status::Error("truncation expected >= voxel_size");
   if (!std::isfinite(w_th) || w_th <= 0.0f) return Status::Error("w_th expected > 0");
+  if (!std::isfinite(mesh_min_weight)) return Status::Error("mesh_min_weight expected finite (< 0 selects w_th)");
   if (!std::isfinite(max_weight) || max_weight < 0.0f || (max_weight > 0.0f && max_weight < w_th)) {
     return Status::Error("max_weight expected 0 (no cap) or >= w_th");
   }

@@ -111,6 +111,9 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   double w_th = c->tsdf.w_th;
   nbv.get("w_th", &w_th);
   c->tsdf.w_th = static_cast<float>(w_th);
+  double mesh_min_weight = c->tsdf.mesh_min_weight;
+  nbv.get("mesh_min_weight", &mesh_min_weight);
+  c->tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
   nbv.getVector("bounds_min", &c->tsdf.bounds.min);
   nbv.getVector("bounds_max", &c->tsdf.bounds.max);
   YamlSection cam = nbv.child("camera");
@@ -157,6 +160,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("collision_radius", &c->path.collision_radius);
   m.get("path_time_budget", &c->path.time_budget);
   m.get("path_iterations", &c->path.iteration_budget);
+  m.get("path_lattice_step", &c->path.lattice_step);
+  m.get("path_lattice_nodes", &c->path.lattice_max_nodes);
   m.get("match_radius", &c->explorer.match_radius);
   m.get("reach_tolerance", &c->explorer.reach_tolerance);
   m.get("max_failures", &c->explorer.max_failures);
@@ -166,6 +171,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("full_on_leg_end", &c->explorer.full_on_leg_end);
   m.get("travel_yaw", &c->explorer.travel_yaw);
   m.get("turn_distance", &c->explorer.turn_distance);
+  m.get("turn_lead", &c->explorer.turn_lead);
+  m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
 namespace {
@@ -71,7 +72,9 @@ Status ExplorerConfig::validate() const {
   }
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
+  if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
+  if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
 }
@@ -305,7 +308,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     const Eigen::Vector4d target = tour_.front();
     if (config_.check_reachable && map_ != nullptr) {
-      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), collision_radius_);
+      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), collision_radius_ + config_.reach_clearance);
       reach_filled_ = true;
       if (!reach_.reachable(target.head<3>())) {
         countFailure(target.head<3>());
@@ -354,7 +357,8 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
   std::vector<Eigen::Vector4d>& p = *path;
   if (!config_.travel_yaw || p.size() < 2) return;
   // Heading of each segment; a (nearly) vertical one keeps the previous heading.
-  double heading = p.front().w();
+  const double start_yaw = p.front().w();
+  double heading = start_yaw;
   std::vector<double> headings(p.size() - 1);
   for (size_t i = 0; i + 1 < p.size(); ++i) {
     const Eigen::Vector2d step = p[i + 1].head<2>() - p[i].head<2>();
@@ -365,12 +369,29 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
   // over its final turn_distance metres (all of it when shorter).
   for (size_t i = 0; i + 1 < p.size(); ++i) p[i].w() = headings[i];
   p.back().w() = target.w();
+  // With turn_lead > 0 the UAV keeps its yaw at the start and turns to the
+  // first heading over turn_lead metres per radian of turn, while it flies.
+  const double start_turn = config_.turn_lead * std::abs(wrapAngle(headings.front() - start_yaw));
+  if (config_.turn_lead > 0.0) p.front().w() = start_yaw;
   const Eigen::Vector3d a = p[p.size() - 2].head<3>(), b = p.back().head<3>();
   const double last = (b - a).norm();
-  if (last > config_.turn_distance + 0.1) {
+  // Room the start turn leaves on the last segment when it is also the first.
+  const double start_on_last = p.size() == 2 ? start_turn : 0.0;
+  if (last > config_.turn_distance + start_on_last + 0.1) {
     Eigen::Vector4d turn_point;
     turn_point << b + (a - b) * (config_.turn_distance / last), headings.back();
     p.insert(p.end() - 1, turn_point);
+  } else if (p.size() == 2) {
+    return;  // one short segment: the yaw goes from the start's to the target's
+  }
+  if (config_.turn_lead > 0.0 && start_turn > 0.0) {
+    const Eigen::Vector3d s0 = p[0].head<3>(), s1 = p[1].head<3>();
+    const double first = (s1 - s0).norm();
+    if (first > start_turn + 0.1) {
+      Eigen::Vector4d lead_point;
+      lead_point << s0 + (s1 - s0) * (start_turn / first), headings.front();
+      p.insert(p.begin() + 1, lead_point);
+    }
   }
 }
 

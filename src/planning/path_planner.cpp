@@ -24,6 +24,8 @@
 #include <ompl/geometric/planners/prm/LazyPRMstar.h>
 
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/planning/lattice_search.h"
+#include "surface_nbv/util/angles.h"
 #include "lazy_roadmap.h"
 
 namespace ob = ompl::base;
@@ -51,8 +53,6 @@ void setPoint(ob::State* state, const Eigen::Vector3d& p) {
   auto* s = state->as<ob::RealVectorStateSpace::StateType>();
   for (int i = 0; i < 3; ++i) s->values[i] = p[i];
 }
-
-double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 // The exact bits of a point, so caches keyed by position never merge two points.
 struct PointKey {
@@ -111,6 +111,8 @@ Status PathPlannerConfig::validate() const {
     return Status::Error("validity_resolution expected >= 0");
   if (!(time_budget >= 0.0) || !std::isfinite(time_budget)) return Status::Error("time_budget expected >= 0");
   if (iteration_budget < 0) return Status::Error("iteration_budget expected >= 0");
+  if (!(lattice_step >= 0.0) || !std::isfinite(lattice_step)) return Status::Error("lattice_step expected >= 0");
+  if (lattice_step > 0.0 && lattice_max_nodes == 0) return Status::Error("lattice_max_nodes expected >= 1");
   return Status::Ok();
 }
 
@@ -336,15 +338,32 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       impl_->prm->query(ptc, [&elapsed, budget_s] { return elapsed() > budget_s; }, mode, &raw);
   impl_->prm->clearQuery();
 
+  PathStatus failure = PathStatus::kExactSolution;
   switch (ob::PlannerStatus::StatusType(status)) {
-    case ob::PlannerStatus::EXACT_SOLUTION: break;
+    case ob::PlannerStatus::EXACT_SOLUTION:
+      if (raw.size() < 2) failure = PathStatus::kNoSolution;
+      break;
     case ob::PlannerStatus::INVALID_START: return finish(PathStatus::kInvalidStart);
     case ob::PlannerStatus::INVALID_GOAL: return finish(PathStatus::kInvalidGoal);
     case ob::PlannerStatus::TIMEOUT:
-      return finish(budget > 0 && evaluations > budget ? PathStatus::kNoSolution : PathStatus::kTimeout);
-    default: return finish(PathStatus::kNoSolution);
+      failure = budget > 0 && evaluations > budget ? PathStatus::kNoSolution : PathStatus::kTimeout;
+      break;
+    default: failure = PathStatus::kNoSolution;
   }
-  if (raw.size() < 2) return finish(PathStatus::kNoSolution);
+  if (failure != PathStatus::kExactSolution) {
+    // The roadmap found nothing: the lattice search, when enabled, has its own
+    // node budget (and the same wall-time budget again as a safety net).
+    if (!(config_.lattice_step > 0.0)) return finish(failure);
+    const double lattice_deadline = elapsed() + budget_s;
+    const LatticeSearchResult lattice = latticeSearch(
+        start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
+        [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
+        [&elapsed, lattice_deadline] { return elapsed() > lattice_deadline; });
+    result.lattice_nodes = lattice.expanded;
+    if (!lattice.found) return finish(failure);
+    raw = lattice.path;
+    result.from_lattice = true;
+  }
 
   // Greedy shortcutting: from each kept point jump to the farthest later
   // point reachable by a collision-free straight motion.

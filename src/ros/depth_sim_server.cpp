@@ -1,13 +1,17 @@
 #include "surface_nbv/ros/depth_sim_server.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include <visualization_msgs/Marker.h>
 
 #include "surface_nbv/ros/depth_conversions.h"
 #include "surface_nbv/sim/depth_points.h"
 #include "surface_nbv/sim/mesh_io.h"
+#include "surface_nbv/util/safe_file_name.h"
 
 namespace surface_nbv {
 namespace {
@@ -49,6 +53,26 @@ visualization_msgs::Marker frustumMarker(const CameraConfig& camera, const std::
   return m;
 }
 
+// Creates `dir` (and its parents) if it is missing; an error if it still is
+// not a directory afterwards (a file of that name, no permission).
+Status prepareExportDirectory(const std::string& dir) {
+  std::error_code create_error, check_error;
+  std::filesystem::create_directories(dir, create_error);
+  if (std::filesystem::is_directory(dir, check_error)) return Status::Ok();
+  return Status::Error("export_directory '" + dir + "' is not a directory and cannot be created" +
+                       (create_error ? ": " + create_error.message() : ""));
+}
+
+// saveMesh writes `path`.tmp and renames it: a symbolic link planted at that
+// name would be followed, so it is refused like one at `path` itself.
+bool hasMeshExtension(const std::string& name) {
+  const size_t dot = name.rfind('.');
+  if (dot == std::string::npos) return false;
+  std::string ext = name.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == "ply" || ext == "stl";
+}
+
 }  // namespace
 
 DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const CameraConfig& camera,
@@ -59,16 +83,17 @@ DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const C
       config_(config),
       tf_listener_(tf_buffer_),
       stats_(priv_, "stats", "depth_sim", config.stats_period) {
-  status_ = loadScene(config_.scene, &mesh_);
+  status_ = prepareExportDirectory(config_.export_directory);
+  if (status_) status_ = loadScene(config_.scene, &mesh_);
   if (status_) status_ = RaycastScene::create(mesh_, &scene_);
   if (!status_) return;
   renderer_ = std::make_unique<DepthRenderer>(*scene_, camera_, config_.render_threads);
   const AlignedBox b = mesh_.bounds();
   ROS_INFO("depth_sim: scene '%s', %zu triangles, bounds [%.1f %.1f %.1f] - [%.1f %.1f %.1f] m; camera %dx%d, "
-           "%.0fx%.0f deg, range [%.2f, %.2f] m, %.1f Hz",
+           "%.0fx%.0f deg, range [%.2f, %.2f] m, %.1f Hz; ~export_scene writes into %s",
            config_.scene.scene.c_str(), mesh_.numTriangles(), b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(),
            b.max.z(), camera.width, camera.height, camera.hfov_deg, camera.vfov_deg, camera.min_range,
-           camera.max_range, camera.rate_hz);
+           camera.max_range, camera.rate_hz, config_.export_directory.c_str());
 
   image_pub_ = nh_.advertise<sensor_msgs::Image>("depth/image", 2);
   info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>("depth/camera_info", 2);
@@ -150,14 +175,19 @@ void DepthSimServer::onTimer(const ros::TimerEvent&) {
 }
 
 bool DepthSimServer::exportScene(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res) {
-  if (req.path.empty()) {
+  std::string path;
+  Status s = resolveFileName(config_.export_directory, req.path, false, &path);
+  if (s && !hasMeshExtension(req.path)) {
+    s = Status::Error("file name '" + req.path + "' expected to end in .ply or .stl");
+  }
+  if (!s) {
     res.code = 1;
-    res.message = "path is empty";
+    res.message = s.message();
     return true;
   }
-  const Status s = saveMesh(mesh_, req.path);
+  s = saveMesh(mesh_, path);
   res.code = s ? 0 : 2;
-  res.message = s ? "wrote " + std::to_string(mesh_.numTriangles()) + " triangles to " + req.path : s.message();
+  res.message = s ? "wrote " + std::to_string(mesh_.numTriangles()) + " triangles to " + path : s.message();
   return true;
 }
 

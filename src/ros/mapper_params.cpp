@@ -33,6 +33,9 @@ void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
   double w_th = map->w_th;
   shared->get("w_th", &w_th);
   map->w_th = static_cast<float>(w_th);
+  double mesh_min_weight = map->mesh_min_weight;
+  shared->get("mesh_min_weight", &mesh_min_weight);
+  map->mesh_min_weight = static_cast<float>(mesh_min_weight);
   shared->get("bounds_min", &map->bounds.min);
   shared->get("bounds_max", &map->bounds.max);
 }

@@ -11,6 +11,7 @@
 
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/PlannerStatus.h"
+#include "surface_nbv/util/angles.h"
 #include "surface_nbv/util/json_writer.h"
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -19,11 +20,6 @@
 
 namespace surface_nbv {
 namespace {
-
-double wrapAngle(double a) {
-  a = std::remainder(a, 2.0 * M_PI);
-  return a <= -M_PI ? a + 2.0 * M_PI : a;
-}
 
 double yawOf(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
@@ -162,9 +158,10 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
   stop_srv_ = priv.advertiseService("stop", &NbvPlannerServer::onStop, this);
   replan_srv_ = priv.advertiseService("replan", &NbvPlannerServer::onReplan, this);
   timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / config_.replan_rate), &NbvPlannerServer::onTimer, this);
-  ROS_INFO("nbv_planner: %s, tick %.1f Hz, speed %.2f m/s, collision radius %.1f m, lambda_tc %.3f, lambda_ic %.3f",
-           stateName(), config_.replan_rate, config_.speed, config_.path.collision_radius,
-           config_.explorer.graph.lambda_tc, config_.explorer.graph.lambda_ic);
+  ROS_INFO("nbv_planner: %s, tick %.1f Hz, speed %.2f m/s, collision radius %.1f m, lambda_tc %.3f, lambda_ic %.3f, "
+           "max_flight_time %.1f s (0: none)", stateName(), config_.replan_rate, config_.speed,
+           config_.path.collision_radius, config_.explorer.graph.lambda_tc, config_.explorer.graph.lambda_ic,
+           config_.max_flight_time);
   message_ = "waiting";
   publishStatus();
 }
@@ -219,14 +216,27 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
     return;
   }
   const Eigen::Vector4d uav(pose.position.x, pose.position.y, pose.position.z, yawOf(pose.orientation));
-  if (have_odometry_) {
-    path_length_ += (uav.head<3>() - uav_.head<3>()).norm();
-  } else {
-    first_odometry_time_ = msg->header.stamp;
-  }
+  if (have_odometry_) path_length_ += (uav.head<3>() - uav_.head<3>()).norm();
   uav_ = uav;
   odometry_time_ = msg->header.stamp;
   have_odometry_ = true;
+  const bool flying = state_ == State::kRunning || state_ == State::kHovering;
+  if (flying && !have_mission_start_) {
+    mission_start_ = odometry_time_;
+    have_mission_start_ = true;
+  }
+  if (flying && config_.max_flight_time > 0.0 && flightTime() >= config_.max_flight_time) {
+    reason_ = "max_flight_time";
+    char text[96];
+    std::snprintf(text, sizeof(text), "%.1f s of flight reached max_flight_time (%.1f s)", flightTime(),
+                  config_.max_flight_time);
+    message_ = text;
+    finish();
+  }
+}
+
+double NbvPlannerServer::flightTime() const {
+  return have_mission_start_ ? (odometry_time_ - mission_start_).toSec() : 0.0;
 }
 
 void NbvPlannerServer::onTimer(const ros::WallTimerEvent&) {
@@ -314,7 +324,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
       hold(d.message);
       return;
     case ExplorerAction::kDone:
-      finish(d);
+      finish();
       return;
   }
   publishStatus();
@@ -326,16 +336,17 @@ void NbvPlannerServer::hold(const std::string& why) {
   have_leg_ = leg_is_spin_ = false;
   if (state_ == State::kRunning || state_ == State::kHovering) state_ = State::kHovering;
   message_ = why;
+  stats_.count("holds");
   ROS_WARN_THROTTLE(5.0, "nbv_planner: holding the current pose: %s", why.c_str());
   publishStatus();
 }
 
-void NbvPlannerServer::finish(const ExplorerDecision& d) {
+void NbvPlannerServer::finish() {
   if (have_odometry_) publishTrajectory({uav_});
-  have_leg_ = false;
+  have_leg_ = leg_is_spin_ = false;
   state_ = State::kDone;
-  ROS_INFO("nbv_planner: mission over after %.1f s of flight and %.1f m: %s %s",
-           (odometry_time_ - first_odometry_time_).toSec(), path_length_, toString(d.reason), d.message.c_str());
+  ROS_INFO("nbv_planner: mission over after %.1f s of flight and %.1f m: %s %s", flightTime(), path_length_,
+           reason_.c_str(), message_.c_str());
   writeReport();
   for (const auto& [service, file] : {std::make_pair(config_.save_map_service, std::string("mission.tsdf")),
                                       std::make_pair(config_.export_mesh_service, std::string("mission.ply"))}) {
@@ -348,6 +359,7 @@ void NbvPlannerServer::finish(const ExplorerDecision& d) {
   }
   publishStatus();
   publishMarkers();
+  stats_.publishNow();
   if (config_.exit_when_done) {
     ROS_INFO("nbv_planner: exit_when_done: shutting down");
     ros::WallDuration(0.5).sleep();  // let the latched status and hold trajectory go out
@@ -362,7 +374,11 @@ void NbvPlannerServer::writeReport() const {
   const ExplorerStats& s = explorer_.stats();
   JsonWriter json;
   json.beginObject().value("state", stateName()).value("reason", reason_).value("message", message_);
-  json.value("flight_time_s", (odometry_time_ - first_odometry_time_).toSec()).value("path_length_m", path_length_);
+  json.value("flight_time_s", flightTime()).value("max_flight_time_s", config_.max_flight_time);
+  json.value("path_length_m", path_length_).value("holds", stats_.get("holds"));
+  for (const char* a : {"fly", "hover", "continue", "done"}) {
+    json.value(std::string("decisions_") + a, stats_.get(std::string("decision_") + a));
+  }
   json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
   json.value("leg_failures", s.leg_failures).value("blacklisted", explorer_.blacklist().size()).endObject();
@@ -433,7 +449,7 @@ void NbvPlannerServer::publishStatus() {
   msg.tour_viewpoints = explorer_.tour().size();
   msg.tour_cost = s.tour_cost;
   msg.path_length = path_length_;
-  msg.flight_time = have_odometry_ ? (odometry_time_ - first_odometry_time_).toSec() : 0.0;
+  msg.flight_time = flightTime();
   msg.blacklisted = explorer_.blacklist().size();
   msg.full_recomputes = s.full_recomputes;
   msg.local_updates = s.local_updates;
@@ -506,6 +522,7 @@ bool NbvPlannerServer::onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   }
   if (before == State::kDone) {
     explorer_.reset();
+    have_mission_start_ = false;  // a new mission, a new flight clock
     res.message = "running a new mission on the current map";
   } else {
     res.message = "running";

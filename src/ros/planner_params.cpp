@@ -33,6 +33,9 @@ Status PlannerNodeConfig::validate() const {
   if (!(leg_settle >= 0.0) || leg_settle > 60.0) return Status::Error("leg_settle expected in [0, 60] s");
   if (!(odometry_timeout > 0.0) || !std::isfinite(odometry_timeout)) return Status::Error("odometry_timeout expected > 0");
   if (!(map_timeout > 0.0) || !std::isfinite(map_timeout)) return Status::Error("map_timeout expected > 0");
+  if (!(max_flight_time >= 0.0) || !std::isfinite(max_flight_time)) {
+    return Status::Error("max_flight_time expected >= 0 s (0: no limit)");
+  }
   if (snapshot_service.empty()) return Status::Error("snapshot_service expected a service name");
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   return Status::Ok();
@@ -52,10 +55,12 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("full_on_leg_end", &e->full_on_leg_end);
   r->get("travel_yaw", &e->travel_yaw);
   r->get("turn_distance", &e->turn_distance);
+  r->get("turn_lead", &e->turn_lead);
   r->get("min_visible", &e->min_visible);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
   r->get("check_reachable", &e->check_reachable);
+  r->get("reach_clearance", &e->reach_clearance);
   r->get("empty_updates_before_done", &e->empty_updates_before_done);
 }
 
@@ -71,9 +76,17 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readExplorerKeys(&mission, &c->explorer);
   mission.get("path_iterations", &c->path.iteration_budget);
   mission.get("path_time_budget", &c->path.time_budget);
+  mission.get("path_lattice_step", &c->path.lattice_step);
+  int lattice_nodes = static_cast<int>(c->path.lattice_max_nodes);
+  mission.get("path_lattice_nodes", &lattice_nodes);
+  c->path.lattice_max_nodes = lattice_nodes > 0 ? static_cast<size_t>(lattice_nodes) : 0;
   mission.get("leg_lookahead", &c->leg_lookahead);
   mission.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
+  mission.get("max_flight_time", &c->max_flight_time);
   if (Status st = mission.status(); !st) return st;
+  if (!(c->max_flight_time >= 0.0) || !std::isfinite(c->max_flight_time)) {
+    return Status::Error(mission.ns() + "/max_flight_time expected >= 0 s (0: no limit)");
+  }
   readExplorerKeys(&reader, &c->explorer);
   reader.get("world_frame", &c->world_frame);
   reader.get("replan_rate", &c->replan_rate);
@@ -86,6 +99,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   reader.get("odometry_timeout", &c->odometry_timeout);
   reader.get("map_timeout", &c->map_timeout);
+  reader.get("max_flight_time", &c->max_flight_time);
   reader.get("report_directory", &c->report_directory);
   reader.get("exit_when_done", &c->exit_when_done);
   reader.get("save_map_service", &c->save_map_service);

@@ -16,6 +16,7 @@ Status DepthSimConfig::validate() const {
     return Status::Error("tf_timeout expected in [0, 1] s");
   }
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
+  if (export_directory.empty()) return Status::Error("export_directory expected a directory");
   return Status::Ok();
 }
 
@@ -50,6 +51,7 @@ Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, Dep
   reader.get("points_stride", &config->points_stride);
   reader.get("tf_timeout", &config->tf_timeout);
   reader.get("stats_period", &config->stats_period);
+  reader.get("export_directory", &config->export_directory);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (Status s = config->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());

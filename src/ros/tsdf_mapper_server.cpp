@@ -114,12 +114,12 @@ void TsdfMapperServer::enqueue(Frame frame) {
   if (frame.frame_id.empty()) return drop("no_frame_id", "header.frame_id is empty");
   if (frame.stamp.isZero()) return drop("zero_stamp", "header.stamp is zero");
   if (!newest_stamp_.isZero() && frame.stamp.toSec() + kBackwardsJump < newest_stamp_.toSec()) {
-    ROS_WARN("tsdf_mapper: time jumped back from %.3f to %.3f s: resetting the frame queue and the TF buffer",
+    ROS_WARN("tsdf_mapper: time jumped back from %.3f to %.3f s: resetting the frame queue",
              newest_stamp_.toSec(), frame.stamp.toSec());
     stats_.count("time_resets");
     stats_.count("dropped_reset", pending_.size());
     pending_.clear();
-    tf_buffer_.clear();
+    if (holdsPosesFromBeforeJump(frame)) tf_buffer_.clear();
     newest_stamp_ = ros::Time();
   }
   newest_stamp_ = std::max(newest_stamp_, frame.stamp);
@@ -130,6 +130,20 @@ void TsdfMapperServer::enqueue(Frame frame) {
     drop("queue_full", "more than " + std::to_string(config_.max_pending_frames) + " frames wait for a transform");
   }
   processPending();
+}
+
+bool TsdfMapperServer::holdsPosesFromBeforeJump(const Frame& frame) const {
+  ros::Time latest;
+  try {
+    // Time 0: the latest time at which the whole chain is known.
+    latest = tf_buffer_.lookupTransform(config_.world_frame, frame.frame_id, ros::Time(0)).header.stamp;
+  } catch (const tf2::TransformException&) {
+    return false;  // nothing of the chain is known: no old pose to mix in
+  }
+  if (latest.toSec() <= frame.stamp.toSec() + kBackwardsJump) return false;
+  ROS_WARN("tsdf_mapper: the TF buffer still holds %s at %.3f s, from before the jump: clearing it",
+           frame.frame_id.c_str(), latest.toSec());
+  return true;
 }
 
 void TsdfMapperServer::processPending() {

@@ -51,12 +51,6 @@ double clampAcceleration(double v, double a, double v_max, double a_max, const A
   return std::clamp(a, std::max(lo, -a_max), std::min(hi, a_max));
 }
 
-double wrapAngle(double angle) {
-  if (!std::isfinite(angle)) return 0.0;
-  double w = std::remainder(angle, 2.0 * M_PI);  // [-pi, pi]
-  if (w <= -M_PI) w += 2.0 * M_PI;
-  return w;
-}
 
 UavModel::UavModel(const UavModelConfig& config, const UavState& initial) : config_(config) {
   if (!reset(initial)) reset(UavState());

@@ -21,6 +21,11 @@ Status resolveFileName(const std::string& directory, const std::string& name, bo
   } else if (must_exist) {
     return Status::Error("no file '" + name + "' in " + directory);
   }
+  // Writers (saveMap, saveMesh) write <name>.tmp first and rename it: a link
+  // planted there would be followed.
+  if (!must_exist && lstat((full + ".tmp").c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    return Status::Error("the temporary file '" + name + ".tmp' exists and is not a regular file: refused");
+  }
   *path = full;
   return Status::Ok();
 }

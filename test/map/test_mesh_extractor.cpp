@@ -201,6 +201,29 @@ TEST(MeshExtractor, UnknownCornersProduceNoTriangles) {
   EXPECT_LT(half_extractor.mesh().bounds().max.x(), 15.5 * kVoxel + 1e-6);
 }
 
+// mesh_min_weight >= 0 meshes voxels seen at all (w > it), below W_th too;
+// a voxel never seen (w = 0) still breaks its cubes.
+TEST(MeshExtractor, MeshMinWeightMeshesObservedVoxelsBelowTheThreshold) {
+  for (float mesh_min : {-1.0f, 0.0f}) {
+    TsdfConfig config = testConfig();
+    config.mesh_min_weight = mesh_min;
+    TsdfMap map(config);
+    writeSdf(&map, [](const Vector3d& p) { return p.z() - 1.03; });
+    MeshExtractor extractor;
+    extractor.update(map);
+    const size_t full = extractor.mesh().numTriangles();
+    map.allocateVoxel(Vector3i(10, 10, 7))->w = 0.05f;  // seen, below W_th = 0.3
+    map.allocateVoxel(Vector3i(20, 20, 7))->w = 0.0f;   // never seen
+    map.mutableBlock(Vector3i(1, 1, 0))->change_stamp = map.beginChange();
+    map.mutableBlock(Vector3i(2, 2, 0))->change_stamp = map.beginChange();
+    extractor.update(map);
+    EXPECT_EQ(extractor.mesh().numTriangles(), full - (mesh_min < 0.0f ? 16 : 8)) << mesh_min;
+  }
+  TsdfConfig bad = testConfig();
+  bad.mesh_min_weight = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(bad.validate().message().find("mesh_min_weight"), std::string::npos);
+}
+
 TEST(MeshExtractor, IncrementalUpdateRemeshesTheBlockAndItsLowerNeighbours) {
   TsdfMap map(testConfig());
   writeSdf(&map, sphere(Vector3d(2.0, 2.0, 1.0), 0.7));

@@ -1,5 +1,6 @@
 // Small known maps for the planning tests: free space with walls, obstacles
-// that appear later, all with exact collision maps (cell = voxel).
+// that appear later, all with exact collision maps (cell = voxel); and the
+// seeded planner configuration the tests plan with.
 #pragma once
 
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_map.h"
+#include "surface_nbv/planning/path_planner.h"
 
 namespace surface_nbv {
 
@@ -68,5 +70,16 @@ class WallWorld {
   TsdfMap map_;
   std::unique_ptr<CollisionMap> collision_;
 };
+
+// A planner with sampler seed `seed` whose plan() stops after `iterations`
+// roadmap samples, so that its paths repeat on any machine; `time_budget`
+// (wall seconds) only guards against a slow machine.
+inline PathPlannerConfig seededPlannerConfig(unsigned int seed, int iterations, double time_budget) {
+  PathPlannerConfig c;
+  c.seed = seed;
+  c.iteration_budget = iterations;
+  c.time_budget = time_budget;
+  return c;
+}
 
 }  // namespace surface_nbv

@@ -16,13 +16,10 @@ using namespace surface_nbv;
 
 namespace {
 
-PathPlannerConfig seededConfig() {
-  PathPlannerConfig c;
-  c.time_budget = 10.0;
-  c.iteration_budget = 3000;
-  c.seed = 7;
-  return c;
-}
+// The seed and roadmap samples of every plan here, and at most 10 s each.
+constexpr unsigned int kSeed = 7;
+constexpr int kIterations = 3000;
+constexpr double kTimeBudget = 10.0;
 
 const Eigen::Vector4d kStart(-4.0, -3.0, 2.5, 0.0);
 const Eigen::Vector4d kGoal(4.0, -3.0, 2.5, 1.5);
@@ -62,7 +59,7 @@ class GapTest : public ::testing::TestWithParam<std::tuple<unsigned int, bool>> 
 
 TEST_P(GapTest, PathGoesThroughTheGapAndIsCollisionFree) {
   const WallWorld world(true);
-  PathPlannerConfig c = seededConfig();
+  PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
   c.seed = std::get<0>(GetParam());
   c.stop_at_first_solution = std::get<1>(GetParam());
   PathPlanner planner(c);
@@ -97,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(Seeds, GapTest,
 
 TEST(PathPlanner, StartOrGoalInCollisionHaveTheirOwnStatus) {
   const WallWorld world(true);
-  PathPlanner planner(seededConfig());
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
   PathResult r = planner.plan(Eigen::Vector4d(0.0, -3.0, 2.5, 0.0), kGoal);
   EXPECT_EQ(r.status, PathStatus::kInvalidStart);
@@ -123,7 +120,7 @@ TEST(PathPlanner, NoMapIsInvalidInput) {
 
 TEST(PathPlanner, ClosedWallIsNotASuccess) {
   const WallWorld world(false);
-  PathPlannerConfig c = seededConfig();
+  PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
   c.iteration_budget = 1500;
   PathPlanner planner(c);
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
@@ -148,7 +145,7 @@ TEST(PathPlanner, ZeroTimeBudgetTimesOut) {
 TEST(PathPlanner, TinyBudgetsGiveAConsistentAnswer) {
   const WallWorld world(true);
   for (int budget : {1, 2, 5, 20}) {
-    PathPlannerConfig c = seededConfig();
+    PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
     c.iteration_budget = budget;
     PathPlanner planner(c);
     ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
@@ -166,7 +163,7 @@ TEST(PathPlanner, TinyBudgetsGiveAConsistentAnswer) {
 
 TEST(PathPlanner, RepeatedClearAndPlanRepeatExactly) {
   const WallWorld world(true);
-  PathPlanner planner(seededConfig());
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
   const PathResult first = planner.plan(kStart, kGoal);
   ASSERT_EQ(first.status, PathStatus::kExactSolution);
@@ -181,7 +178,8 @@ TEST(PathPlanner, RepeatedClearAndPlanRepeatExactly) {
 
 TEST(PathPlanner, SameSeedSamePath) {
   const WallWorld world(true);
-  PathPlanner a(seededConfig()), b(seededConfig());
+  const PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
+  PathPlanner a(c), b(c);
   ASSERT_TRUE(a.setMap(&world.collision(), world.bounds()));
   ASSERT_TRUE(b.setMap(&world.collision(), world.bounds()));
   const PathResult ra = a.plan(kStart, kGoal), rb = b.plan(kStart, kGoal);
@@ -192,7 +190,7 @@ TEST(PathPlanner, SameSeedSamePath) {
 
 TEST(PathPlanner, RoadmapPersistsAndMapChangesAreRechecked) {
   WallWorld world(true);
-  PathPlanner planner(seededConfig());
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
   const PathResult first = planner.plan(kStart, kGoal);
   ASSERT_EQ(first.status, PathStatus::kExactSolution);
@@ -229,7 +227,7 @@ std::vector<Eigen::Vector4d> queryPoints(const CollisionMap& map, size_t n, unsi
 }
 
 PathPlannerConfig searchConfig(QuerySearch search) {
-  PathPlannerConfig c = seededConfig();
+  PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
   c.time_budget = 1e3;  // only the iterations bound it, so both grow alike
   c.iteration_budget = 600;
   c.search = search;
@@ -276,7 +274,7 @@ TEST(PathPlanner, FastSearchMatchesOmplSearch) {
 // edges and goes around through what is left of the gap.
 TEST(PathPlanner, BlockedEdgeIsRecheckedAndAvoided) {
   WallWorld world(true);
-  PathPlanner planner(seededConfig());
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
   const Eigen::Vector4d start(-4.0, 2.0, 2.5, 0.0), goal(4.0, 2.0, 2.5, 0.0);
   const PathResult first = planner.plan(start, goal);
@@ -305,7 +303,7 @@ TEST(PathPlanner, SameSeedSameQueriesRepeatExactly) {
   const std::vector<Eigen::Vector4d> points = queryPoints(world.collision(), 12, 5);
   std::vector<std::vector<Eigen::Vector4d>> runs[2];
   for (auto& run : runs) {
-    PathPlanner planner(seededConfig());
+    PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
     ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
     for (size_t i = 0; i + 1 < points.size(); ++i) run.push_back(planner.plan(points[i], points[i + 1]).path);
   }
@@ -318,7 +316,7 @@ TEST(PathPlanner, IterationBudgetBoundsTheRoadmapGrowth) {
   const WallWorld world(false);
   size_t grown[2] = {0, 0};
   for (size_t& g : grown) {
-    PathPlannerConfig c = seededConfig();
+    PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
     c.iteration_budget = 200;
     PathPlanner planner(c);
     ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
@@ -335,7 +333,7 @@ TEST(PathPlanner, IterationBudgetBoundsTheRoadmapGrowth) {
 
 TEST(PathPlannerOracle, StraightWhenFreeLongerAroundTheWall) {
   const WallWorld world(true);
-  PathPlanner planner(seededConfig());
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
   ASSERT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kExactSolution);
   const auto oracle = planner.distanceOracle();
@@ -361,7 +359,7 @@ TEST(PathPlannerOracle, StraightWhenFreeLongerAroundTheWall) {
 
 TEST(PathPlannerOracle, InfiniteAcrossAClosedWall) {
   const WallWorld world(false);
-  PathPlannerConfig c = seededConfig();
+  PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
   c.iteration_budget = 1500;
   PathPlanner planner(c);
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));

@@ -11,18 +11,6 @@
 
 using namespace surface_nbv;
 
-namespace {
-
-PathPlannerConfig plannerConfig() {
-  PathPlannerConfig c;
-  c.seed = 3;
-  c.time_budget = 5.0;
-  c.iteration_budget = 4000;
-  return c;
-}
-
-}  // namespace
-
 TEST(ReachableSpace, GapConnectsBothSidesAClosedWallSeparatesThem) {
   WallWorld world(true);
   ReachableSpace space;
@@ -40,7 +28,7 @@ TEST(ReachableSpace, GapConnectsBothSidesAClosedWallSeparatesThem) {
   EXPECT_FALSE(space.reachable(right));
   EXPECT_FALSE(space.reachable(Eigen::Vector3d(50.0, 0.0, 2.0))) << "outside the grid";
   // The planner agrees: no path across the closed wall.
-  PathPlanner planner(plannerConfig());
+  PathPlanner planner(seededPlannerConfig(3, 4000, 5.0));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()).ok());
   const PathResult r = planner.plan(Eigen::Vector4d(left.x(), left.y(), left.z(), 0.0),
                                     Eigen::Vector4d(right.x(), right.y(), right.z(), 0.0));
@@ -49,7 +37,7 @@ TEST(ReachableSpace, GapConnectsBothSidesAClosedWallSeparatesThem) {
 
 TEST(ReachableSpace, EveryPointOfAPlannedPathIsInside) {
   WallWorld world(true);
-  PathPlanner planner(plannerConfig());
+  PathPlanner planner(seededPlannerConfig(3, 4000, 5.0));
   ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()).ok());
   const Eigen::Vector4d a(-3.0, -3.0, 2.5, 0.0), b(3.0, -4.0, 1.5, 0.0);
   const PathResult r = planner.plan(a, b);

@@ -5,7 +5,8 @@
 // digest of the map through ~save_map. Frames are 64 x 48 depth images of a
 // plane 2 m ahead; the camera looks along world +z from a pose chosen by the
 // caller. Thread safety: the counters and the last tsdf/update are guarded by
-// a mutex; every other method is meant for the test thread.
+// a mutex; every other method is meant for the test thread. MapperTestNode is
+// the start both tests' main functions share.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -256,6 +257,20 @@ class MapperProbe {
   uint64_t updates_received_ = 0;
   uint64_t snapshots_received_ = 0;
   TsdfUpdate last_update_;
+};
+
+// What the mains of the mapper rostests share, built after ros::init: a
+// running two-thread spinner and a started probe. `ok` is false, and the
+// reason printed, when the mapper did not come up.
+struct MapperTestNode {
+  MapperTestNode(const std::string& dir, const std::string& mapper) : spinner(2), probe(dir, mapper) {
+    spinner.start();
+    ok = probe.start();
+    if (!ok) std::fprintf(stderr, "%s did not come up\n", mapper.c_str());
+  }
+  ros::AsyncSpinner spinner;
+  MapperProbe probe;
+  bool ok = false;
 };
 
 inline uint64_t delta(const Counters& before, const Counters& after, const std::string& name) {

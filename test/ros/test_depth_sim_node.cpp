@@ -1,10 +1,17 @@
 // Wiring of depth_sim: rate, encoding, frame, CameraInfo, depth at the pose of
-// the frame time for a moving scripted TF, drops without TF, ground truth.
+// the frame time for a moving scripted TF, drops without TF, ground truth,
+// and ~export_scene confined to ~export_directory.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
+#include <set>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <ros/ros.h>
@@ -17,8 +24,20 @@
 
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/NodeStats.h"
+#include "surface_nbv/sim/mesh_io.h"
 
 namespace {
+
+// ~export_directory in depth_sim.test, and its parent.
+const std::string kRoot = "/tmp/surface_nbv_depth_sim_test";
+const std::string kExportDir = kRoot + "/exports";
+
+// The names in `dir`, links not followed.
+std::set<std::string> listing(const std::string& dir) {
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
 
 // Camera at (x(t), 0, 2) looking along world +x towards the box face x = -2.
 constexpr double kX0 = -6.0;
@@ -179,18 +198,86 @@ TEST_F(DepthSimNodeTest, DropsWithoutTfThenPublishesAtRateWithPoseOfFrameTime) {
   EXPECT_GT(counter(rec_.stats, "frames_published"), 10u);
 }
 
-TEST_F(DepthSimNodeTest, ExportSceneService) {
+// ~export_scene writes only plain names inside ~export_directory
+// (depth_sim.test: kExportDir, two levels below /tmp so that the node has to
+// create it; the test removes kRoot at the end). Everything else is refused
+// with code 1 and a reason, and nothing is written inside or outside.
+TEST_F(DepthSimNodeTest, ExportSceneWritesOnlyPlainNamesInItsDirectory) {
+  namespace fs = std::filesystem;
   ros::ServiceClient client = nh_.serviceClient<surface_nbv::FilePath>("depth_sim/export_scene");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(30.0)));
-  surface_nbv::FilePath srv;
-  ASSERT_TRUE(client.call(srv));
-  EXPECT_EQ(srv.response.code, 1);  // empty path
-  srv.request.path = "/tmp/surface_nbv_depth_sim_export.stl";
-  ASSERT_TRUE(client.call(srv));
-  EXPECT_EQ(srv.response.code, 0) << srv.response.message;
-  srv.request.path = "/nonexistent-dir/scene.ply";
-  ASSERT_TRUE(client.call(srv));
-  EXPECT_EQ(srv.response.code, 2);
+  ASSERT_TRUE(fs::is_directory(kExportDir)) << "depth_sim did not create its export_directory";
+  // Leftovers of an earlier run, then the traps: a subdirectory, links to a
+  // file outside (at a name and at the temporary name saveMesh writes first)
+  // and a dangling link.
+  for (const auto& e : fs::directory_iterator(kExportDir)) fs::remove_all(e.path());
+  for (const auto& e : fs::directory_iterator(kRoot)) {
+    if (e.path() != fs::path(kExportDir)) fs::remove_all(e.path());
+  }
+  fs::create_directory(kExportDir + "/a");
+  const std::string kOutside = kRoot + "/outside.stl", kNowhere = kRoot + "/nowhere.stl";
+  { std::ofstream(kOutside) << "not a mesh"; }
+  fs::create_symlink(kOutside, kExportDir + "/link.stl");
+  fs::create_symlink(kOutside, kExportDir + "/via_tmp.stl.tmp");
+  fs::create_symlink(kNowhere, kExportDir + "/dangling.stl");
+  const std::set<std::string> planted = listing(kExportDir);
+
+  auto call = [&](const std::string& name, std::string* message) {
+    surface_nbv::FilePath srv;
+    srv.request.path = name;
+    if (!client.call(srv)) return -1;
+    *message = srv.response.message;
+    return static_cast<int>(srv.response.code);
+  };
+  std::string message;
+  for (const std::string name : {"scene.stl", "scene.PLY"}) {
+    EXPECT_EQ(call(name, &message), 0) << name << ": " << message;
+    EXPECT_NE(message.find(kExportDir + "/" + name), std::string::npos) << message;
+    surface_nbv::TriangleMesh mesh;
+    ASSERT_TRUE(surface_nbv::loadMesh(kExportDir + "/" + name, {}, &mesh).ok()) << name;
+    EXPECT_EQ(mesh.numTriangles(), 12u) << name << ": the box scene has 12 triangles";
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(kExportDir + "/" + name))) << name;
+  }
+
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"", "empty"},
+      {".", "'.'"},
+      {"..", "'.'"},
+      {".hidden.stl", "'.'"},
+      {"../x.stl", "'.'"},
+      {"a/b.stl", "path"},
+      {"a/../c.stl", "path"},
+      {"/tmp/surface_nbv_depth_sim_absolute.stl", "path"},
+      {kRoot + "/absolute.stl", "path"},
+      {"a\\b.stl", "path"},
+      {"new\nline.stl", "control"},
+      {std::string(200, 'x') + ".stl", "128"},
+      {"a", "not a regular file"},
+      {"link.stl", "symbolic link"},
+      {"dangling.stl", "symbolic link"},
+      {"via_tmp.stl", "temporary"},
+      {"scene.obj", ".ply or .stl"},
+      {"scene", ".ply or .stl"},
+  };
+  for (const auto& [name, reason] : refused) {
+    EXPECT_EQ(call(name, &message), 1) << "'" << name << "': " << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << "'" << name << "': " << message;
+  }
+
+  // Nothing was written: the directory holds the two exports and the traps,
+  // the parent holds the directory and the link target, unchanged; the
+  // dangling link still points at nothing.
+  std::set<std::string> expected = planted;
+  expected.insert({"scene.stl", "scene.PLY"});
+  EXPECT_EQ(listing(kExportDir), expected);
+  EXPECT_EQ(listing(kExportDir + "/a"), std::set<std::string>{});
+  EXPECT_EQ(listing(kRoot), (std::set<std::string>{"exports", "outside.stl"}));
+  std::ifstream in(kOutside);
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "not a mesh");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(kNowhere)));
+  EXPECT_FALSE(fs::exists(fs::symlink_status("/tmp/surface_nbv_depth_sim_absolute.stl")));
+  fs::remove_all(kRoot);
 }
 
 }  // namespace

@@ -262,13 +262,9 @@ int main(int argc, char** argv) {
   // valid map outside it, one to nothing.
   std::system(("rm -rf " + kDir + " " + kOutside + " " + kAbsolute + " " + kEscape).c_str());
   std::system(("mkdir -p " + kDir + "/adir").c_str());
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  MapperProbe p(kDir, "/tsdf_mapper");
-  if (!p.start()) {
-    std::fprintf(stderr, "tsdf_mapper did not come up\n");
-    return 1;
-  }
+  MapperTestNode node(kDir, "/tsdf_mapper");
+  if (!node.ok) return 1;
+  MapperProbe& p = node.probe;
   TsdfMap outside(p.mapConfig());
   outside.allocateBlock(Eigen::Vector3i(2, 2, 2));
   if (!saveMap(outside, kOutside).ok() || symlink(kOutside.c_str(), (kDir + "/link.map").c_str()) != 0 ||

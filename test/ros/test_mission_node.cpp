@@ -1,10 +1,16 @@
-// The whole ROS mission on the box (mission.test): waits for planner/status
-// DONE, then evaluates the mesh the planner had the mapper export.
+// The whole ROS mission on the box (mission.test, mission_faults.test,
+// mission_time_limit.test): waits for planner/status DONE, checks the end
+// reason (~expected_reason, default complete), the flight time against
+// ~max_flight_time when set (within ~flight_time_tolerance s), the saved map,
+// mesh and report, then evaluates the mesh the planner had the mapper export.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
+#include <sstream>
 
 #include <ros/ros.h>
 
@@ -15,13 +21,27 @@
 
 using namespace surface_nbv;
 
-TEST(Mission, BoxMissionEndsByItselfWithTheBoxCovered) {
+namespace {
+
+// The number after "key": in the planner's mission_report.json, NaN if absent.
+double jsonNumber(const std::string& text, const std::string& key) {
+  const size_t at = text.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(text.c_str() + at + key.size() + 4, nullptr);
+}
+
+}  // namespace
+
+TEST(Mission, BoxMissionEndsWithTheExpectedReasonAndFiles) {
   ros::NodeHandle nh, priv("~");
-  std::string out_dir;
-  double min_coverage = 0.95;
+  std::string out_dir, expected_reason = "complete";
+  double min_coverage = 0.95, max_flight_time = 0.0, tolerance = 2.0;
   ASSERT_TRUE(priv.getParam("out_dir", out_dir));
   priv.getParam("min_coverage", min_coverage);
-  std::filesystem::remove(out_dir + "/mission.ply");
+  priv.getParam("expected_reason", expected_reason);
+  priv.getParam("max_flight_time", max_flight_time);
+  priv.getParam("flight_time_tolerance", tolerance);
+  for (const char* f : {"/mission.ply", "/mission.tsdf", "/mission_report.json"}) std::filesystem::remove(out_dir + f);
   std::mutex mutex;
   PlannerStatus status;
   size_t running = 0;
@@ -43,14 +63,23 @@ TEST(Mission, BoxMissionEndsByItselfWithTheBoxCovered) {
   ASSERT_TRUE(done) << "no DONE within the time limit; last state " << status.state << " (" << status.reason << ": "
                     << status.message << ")";
   EXPECT_GT(running, 0u);
-  EXPECT_EQ(status.reason, "complete") << status.message;
+  EXPECT_EQ(status.reason, expected_reason) << status.message;
   EXPECT_GT(status.path_length, 5.0);
   std::printf("mission: %.1f s of flight, %.1f m, %u legs, %u full / %u local updates, %u blacklisted: %s\n",
               status.flight_time, status.path_length, status.legs, status.full_recomputes, status.local_updates,
               status.blacklisted, status.message.c_str());
-  // The planner asked the mapper to export the mesh: evaluate it.
+  if (max_flight_time > 0.0) {
+    EXPECT_GE(status.flight_time, max_flight_time);
+    EXPECT_LE(status.flight_time, max_flight_time + tolerance);
+  }
+  // The planner asked the mapper to save the map and export the mesh.
   for (int i = 0; i < 20 && !std::filesystem::exists(out_dir + "/mission.ply"); ++i) ros::WallDuration(0.5).sleep();
   ASSERT_TRUE(std::filesystem::exists(out_dir + "/mission_report.json"));
+  EXPECT_TRUE(std::filesystem::exists(out_dir + "/mission.tsdf"));
+  std::stringstream report;
+  report << std::ifstream(out_dir + "/mission_report.json").rdbuf();
+  EXPECT_NE(report.str().find("\"reason\": \"" + expected_reason + "\""), std::string::npos) << report.str();
+  EXPECT_NEAR(jsonNumber(report.str(), "flight_time_s"), status.flight_time, 1e-3) << report.str();
   TriangleMesh box, reconstruction;
   SceneConfig scene;
   scene.scene = "box";

@@ -47,3 +47,19 @@ TEST_F(SafeFileName, RefusesPathsTraversalAndSymlinks) {
   EXPECT_FALSE(resolveFileName(dir_, "missing.map", true, &path).ok());
   EXPECT_FALSE(resolveFileName("", "x.map", false, &path).ok());
 }
+
+// A writer writes <name>.tmp and renames it: a link planted at that name is
+// refused for writing (it would be followed), a leftover regular file is not.
+TEST_F(SafeFileName, RefusesALinkPlantedAtTheTemporaryName) {
+  ASSERT_EQ(symlink("/tmp/surface_nbv_outside.map", (dir_ + "/planted.map.tmp").c_str()), 0);
+  std::string path = "untouched";
+  const Status s = resolveFileName(dir_, "planted.map", false, &path);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("temporary"), std::string::npos) << s.message();
+  EXPECT_EQ(path, "untouched");
+  fs::create_directories(dir_ + "/dir.map.tmp");
+  EXPECT_FALSE(resolveFileName(dir_, "dir.map", false, &path).ok());
+  std::ofstream(dir_ + "/left.map.tmp") << "partial";
+  EXPECT_TRUE(resolveFileName(dir_, "left.map", false, &path).ok());
+  EXPECT_FALSE(resolveFileName(dir_, "planted.map.tmp", true, &path).ok());  // a link, even to read
+}

@@ -1,7 +1,8 @@
 // Marching Cubes over a TsdfMap (METHOD.md, "TSDF map": the surface is the
 // zero level set of phi). The samples are voxel centres; the cube whose lowest
 // corner is voxel v belongs to v's block and is meshed only when all 8 of its
-// corners are known (w >= w_th). Vertices are linearly interpolated along cube
+// corners are known (w >= w_th; with TsdfConfig::mesh_min_weight >= 0, when
+// all 8 have w > mesh_min_weight). Vertices are linearly interpolated along cube
 // edges and triangles are wound counter-clockwise seen from positive phi, so
 // their normals point into free space.
 #pragma once

@@ -28,6 +28,10 @@ struct TsdfConfig {
   double truncation = 0.0;        // 0 selects 3 voxels
   float w_th = 0.3f;              // W_th: known iff w >= w_th
   float max_weight = 0.0f;        // cap on w; 0 = no cap
+  // Weight a voxel needs to be meshed (Marching Cubes corners): < 0 uses w_th
+  // (known voxels only); >= 0 meshes every voxel whose weight exceeds it, as
+  // the fusion of Zeng et al. (2017) the paper used does (w > 0).
+  float mesh_min_weight = -1.0f;
   AlignedBox bounds{Eigen::Vector3d(-10, -10, -1), Eigen::Vector3d(10, 10, 9)};
   size_t max_blocks = 1u << 20;   // allocation stops there (counted, never a crash)
   InvalidPixelPolicy invalid_pixels = InvalidPixelPolicy::kClearInfinite;

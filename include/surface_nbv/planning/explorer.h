@@ -56,6 +56,10 @@ struct ExplorerConfig {
   // turns to the target's yaw over the last turn_distance metres.
   bool travel_yaw = false;
   double turn_distance = 2.0;     // m
+  // travel_yaw only: 0 turns in place to the first heading at a leg's start
+  // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
+  // many metres per radian (speed / yaw rate turns at the full yaw rate).
+  double turn_lead = 0.0;         // m/rad
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
@@ -66,6 +70,12 @@ struct ExplorerConfig {
   // space (ReachableSpace, filled once per map version); one that does not
   // counts a failure at once instead of costing the planner its budget.
   bool check_reachable = false;
+  // Added to the collision radius for that fill [m]: cells whose centre is
+  // this much farther from obstacles. The planner itself needs the radius
+  // plus half a motion-check step everywhere along a path, so passages a
+  // fill at the bare radius lets through can cost the roadmap its whole
+  // budget on every attempt (measured: minutes of wall time per decision).
+  double reach_clearance = 0.0;
   // A frontier without any ISE before any ISE was ever seen is a map that
   // has seen nothing yet (a late first frame), not a finished mission: the
   // explorer hovers through this many such frontiers before it says complete.

@@ -67,6 +67,12 @@ struct PathPlannerConfig {
   bool stop_at_first_solution = true; // false: LazyPRM* improves the path until the budget ends
   bool simplify = true;               // greedy collision-checked shortcutting of the path
   QuerySearch search = QuerySearch::kFast;  // how plan() searches the kept roadmap
+  // When the roadmap yields no path (kNoSolution or kTimeout), an A* over a
+  // lattice of this step [m] anchored at the start, checked with the same
+  // motion validity (lattice_search.h), tries before plan() gives up: tight
+  // spots and narrow passages that sampling misses. 0 = off.
+  double lattice_step = 0.0;
+  size_t lattice_max_nodes = 200000;  // lattice nodes expanded at most per plan()
 
   // Names the first bad key, e.g. "collision_radius expected > 0".
   Status validate() const;
@@ -93,6 +99,8 @@ struct PathResult {
   std::vector<Eigen::Vector4d> path;  // (x, y, z, yaw); empty unless hasPath(status)
   double length = 0.0;                // translational length [m]
   double seconds = 0.0;               // wall time of the call
+  bool from_lattice = false;          // the lattice fallback found the path
+  size_t lattice_nodes = 0;           // nodes the lattice fallback expanded (0: not run)
 };
 
 class PathPlanner {

@@ -5,7 +5,9 @@
 // LINE_LIST of the camera's view frustum in the camera frame (~frustum: apex
 // to near plane at min_range, near to far plane at max_range) and ~stats.
 // A missing or invalid transform drops the frame (counted, throttled warning):
-// nothing is ever rendered from a stale pose.
+// nothing is ever rendered from a stale pose. ~export_scene writes the scene
+// mesh (.ply or .stl) under a plain file name inside ~export_directory; paths,
+// hidden names and symbolic links are refused (code 1) and nothing is written.
 #pragma once
 
 #include <memory>
@@ -24,7 +26,8 @@ namespace surface_nbv {
 
 class DepthSimServer {
  public:
-  // Loads the scene and builds the BVH; check ok() before spinning.
+  // Creates ~export_directory if missing, loads the scene and builds the BVH.
+  // Check status() before spinning.
   DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const CameraConfig& camera, const DepthSimConfig& config);
   const Status& status() const { return status_; }
 

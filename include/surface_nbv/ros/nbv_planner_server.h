@@ -13,6 +13,10 @@
 //     (Explorer::checkPath) and re-plans it when blocked,
 //   - hovers when odometry is older than odometry_timeout or the map has not
 //     been updated for map_timeout (both ROS time), and resumes when they come back.
+// With max_flight_time > 0 the mission ends as on done (hold, DONE, report,
+// map and mesh) with reason max_flight_time once the odometry stamp is that
+// many seconds past the mission's first odometry (checked on each odometry
+// message). A respawned planner starts its own clock.
 // planner/status (surface_nbv/PlannerStatus, latched) says the state, the
 // last reason, ISE counts, tour, flown length and stage timings, and
 // planner/markers shows the tour, the current leg, the next target and the
@@ -70,7 +74,10 @@ class NbvPlannerServer {
   void act(const ExplorerDecision& d);
   // Holds the current pose; HOVERING (or keeps STOPPED / DONE) with `why`.
   void hold(const std::string& why);
-  void finish(const ExplorerDecision& d);
+  // Holds, DONE, the report, the map and mesh; reason_ and message_ say why.
+  void finish();
+  // s of odometry time since the first odometry of the mission, 0 before it.
+  double flightTime() const;
   // Publishes the points as a trajectory from now; returns its duration [s].
   double publishTrajectory(const std::vector<Eigen::Vector4d>& points);
   void publishStatus();
@@ -94,7 +101,8 @@ class NbvPlannerServer {
   ros::Time frontier_time_;
   Eigen::Vector4d uav_ = Eigen::Vector4d::Zero();  // x, y, z, yaw
   bool have_odometry_ = false;
-  ros::Time odometry_time_, first_odometry_time_;
+  ros::Time odometry_time_, mission_start_;
+  bool have_mission_start_ = false;  // mission_start_ is the mission's first odometry stamp
   double path_length_ = 0.0;
   bool spun_ = false;              // the take-off spin was sent
   bool have_leg_ = false;          // a trajectory is being flown

@@ -42,6 +42,10 @@ struct PlannerNodeConfig {
   double leg_yaw_tolerance = 0.35;  // rad
   double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
   double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
+  // s of flight (odometry time since the mission started) after which the
+  // mission ends as when it is done, with reason max_flight_time. 0: no
+  // limit. Also read from the mission section (nbv_mission's key).
+  double max_flight_time = 0.0;
   std::string report_directory;   // where DONE writes mission_report.json; empty = nowhere
   bool exit_when_done = false;    // shut the node down once DONE (with required="true" the launch ends)
   std::string save_map_service;   // called with "mission.tsdf" when DONE; empty = not called

@@ -22,6 +22,9 @@ struct DepthSimConfig {
   int points_stride = 2;         // every n-th row and column in depth/points
   double tf_timeout = 0.05;      // s to wait for world -> camera at the frame time
   double stats_period = 1.0;     // s between ~stats messages
+  // The only place ~export_scene writes: created at start-up if missing; the
+  // service takes a plain file name inside it.
+  std::string export_directory = "/tmp/surface_nbv_scenes";
 
   Status validate() const;
 };

@@ -3,10 +3,11 @@
 // own stamp. Frames wait in a bounded queue for their transform (no
 // extrapolation, no "latest" fallback) and are dropped, counted by reason,
 // when it does not come; stamps jumping backwards (a bag restarted) reset the
-// queue and the TF buffer. Publishes tsdf/update (changed blocks, or a
-// snapshot for late joiners and on request, with sequence numbers),
-// tsdf/mesh and tsdf/stats; services ~save_map, ~load_map, ~export_mesh take a
-// file name inside map_directory, ~request_snapshot forces a snapshot.
+// queue, and the TF buffer if it still holds poses from before the jump.
+// Publishes tsdf/update (changed blocks, or a snapshot for late joiners and
+// on request, with sequence numbers), tsdf/mesh and tsdf/stats; services
+// ~save_map, ~load_map, ~export_mesh take a file name inside map_directory,
+// ~request_snapshot forces a snapshot.
 #pragma once
 
 #include <deque>
@@ -50,6 +51,12 @@ class TsdfMapperServer {
   void onImage(const sensor_msgs::ImageConstPtr& msg);
   void onPoints(const sensor_msgs::PointCloud2ConstPtr& msg);
   void enqueue(Frame frame);
+  // After `frame`'s stamp jumped back: whether the TF buffer still places its
+  // sensor later than the jump allows, i.e. holds the poses of before the
+  // jump. Under sim time tf2_ros's listener clears the buffer when the first
+  // transform after a clock jump comes; that transform belongs to the new
+  // timeline and must survive the frame's reset (it may precede the frame).
+  bool holdsPosesFromBeforeJump(const Frame& frame) const;
   void processPending();
   void integrate(const Frame& frame, const Transform& T_W_S);
   void drop(const std::string& reason, const std::string& detail);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "surface_nbv/common.h"
+#include "surface_nbv/util/angles.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -45,8 +46,6 @@ AxisDiscretization discretizeAxis(double drag, double dt);
 // beyond the box), the one braking hardest. Always finite.
 double clampAcceleration(double v, double a, double v_max, double a_max, const AxisDiscretization& d);
 
-// Wraps an angle into (-pi, pi]; non-finite input gives 0.
-double wrapAngle(double angle);
 
 // Integrates UavState at a caller-chosen fixed step. Every command is clamped
 // first (NaN -> 0, acceleration and yaw rate boxes, velocity box after the step),

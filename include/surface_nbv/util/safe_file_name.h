@@ -11,7 +11,9 @@ namespace surface_nbv {
 
 // Refuses empty names, names with '/', '\\', NUL or control characters, "." and
 // "..", names starting with '.', and names longer than 128 bytes; with
-// `must_exist`, a missing file; always, an existing symlink. On success
+// `must_exist`, a missing file; without it (a file to write), a <name>.tmp
+// that exists and is not a regular file (the writers write it first and
+// rename it); always, an existing symlink. On success
 // *path = directory + "/" + name.
 Status resolveFileName(const std::string& directory, const std::string& name, bool must_exist, std::string* path);
 
