@@ -197,6 +197,7 @@ void NbvPlannerServer::onFrontier(const surface_nbv::SurfaceFrontierConstPtr& ms
   frontier_time_ = msg->header.stamp;
   have_frontier_ = frontier_new_ = true;
   stats_.count("frontiers");
+  if (config_.prompt_ticks && state_ == State::kRunning && !leg_is_spin_) tick();
 }
 
 void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
@@ -232,6 +233,11 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
                   config_.max_flight_time);
     message_ = text;
     finish();
+    return;
+  }
+  if (config_.prompt_ticks && state_ == State::kRunning && have_leg_ && !leg_is_spin_ && feed_.mirror().synced() &&
+      odometry_time_ >= leg_end_ + ros::Duration(config_.leg_settle)) {
+    tick();
   }
 }
 
@@ -239,7 +245,7 @@ double NbvPlannerServer::flightTime() const {
   return have_mission_start_ ? (odometry_time_ - mission_start_).toSec() : 0.0;
 }
 
-void NbvPlannerServer::onTimer(const ros::WallTimerEvent&) {
+void NbvPlannerServer::tick() {
   if (state_ == State::kStopped || state_ == State::kDone) return;
   const ros::Time now = ros::Time::now();
   if (!have_odometry_ || !feed_.mirror().synced()) {

@@ -90,6 +90,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readExplorerKeys(&reader, &c->explorer);
   reader.get("world_frame", &c->world_frame);
   reader.get("replan_rate", &c->replan_rate);
+  reader.get("prompt_ticks", &c->prompt_ticks);
   reader.get("speed", &c->speed);
   reader.get("yaw_rate", &c->yaw_rate);
   reader.get("trajectory_spacing", &c->trajectory_spacing);

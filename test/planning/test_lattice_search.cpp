@@ -113,7 +113,9 @@ TEST(LatticeSearch, PlannerFallsBackToTheLatticeThroughANarrowSlot) {
       for (double f = 0.0; f <= 1.0; f += 0.01) {
         const Vector3d p = a + f * (b - a);
         ASSERT_TRUE(world.collision().isFree(p, 1.0)) << "segment " << i << " at " << p.transpose();
-        if (std::abs(p.x()) < 0.3) EXPECT_GT(p.y(), 2.1 + 0.9) << "through the slot";
+        if (std::abs(p.x()) < 0.3) {
+          EXPECT_GT(p.y(), 2.1 + 0.9) << "through the slot";
+        }
       }
     }
     EXPECT_LT(r.length, 16.0);  // the straight way through the slot centre is 14.3 m

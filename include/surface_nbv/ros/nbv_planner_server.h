@@ -1,7 +1,8 @@
 // The nbv_planner node: the paper's Fig. 1 loop (planning/explorer.h) on
 // ROS topics. It keeps a MapMirror of tsdf/update (asking the mapper for a
 // snapshot on a gap) with a CollisionMap, the last surface/frontier and the
-// last odometry, and on each tick (replan_rate, wall clock) while RUNNING:
+// last odometry, and on each tick (replan_rate, wall clock; with prompt_ticks
+// also on each frontier and on the odometry that shows the leg ended) while RUNNING:
 //   - turns start_spin in place once at the first start (to see around),
 //   - hands a new frontier, or the end of the current leg (its last point's
 //     time plus leg_settle, ROS time), to Explorer::update and acts on the
@@ -66,7 +67,9 @@ class NbvPlannerServer {
  private:
   void onFrontier(const surface_nbv::SurfaceFrontierConstPtr& msg);
   void onOdometry(const nav_msgs::OdometryConstPtr& msg);
-  void onTimer(const ros::WallTimerEvent&);
+  void onTimer(const ros::WallTimerEvent&) { tick(); }
+  // One decision step (the timer's, and prompt_ticks' on frontier and leg end).
+  void tick();
   bool onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onStop(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onReplan(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);

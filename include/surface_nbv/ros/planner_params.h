@@ -28,6 +28,10 @@ struct PlannerNodeConfig {
   CollisionConfig collision;
   std::string world_frame = "world";
   double replan_rate = 2.0;       // Hz: ticks; a tick decides on a new frontier, an ended leg or ~replan
+  // Also tick at once when a frontier arrives and when odometry shows the
+  // leg ended (ROS time): the wall-clock timer alone left the UAV idle for up
+  // to 1 / replan_rate wall seconds (2 s of flight at 4x) after every leg.
+  bool prompt_ticks = true;
   double speed = 0.5;             // m/s: reference speed of planner/trajectory
   double yaw_rate = 1.0;          // rad/s: reference yaw rate (turns in place are timed by it; the tracker's limit)
   double trajectory_spacing = 0.5;  // m between trajectory points along the path
