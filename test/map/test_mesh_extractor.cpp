@@ -201,7 +201,7 @@ TEST(MeshExtractor, UnknownCornersProduceNoTriangles) {
   EXPECT_LT(half_extractor.mesh().bounds().max.x(), 15.5 * kVoxel + 1e-6);
 }
 
-// mesh_min_weight >= 0 meshes voxels seen at all (w > it), below W_th too;
+// mesh_min_weight >= 0 meshes voxels seen at all (w > it), below W_th too, and
 // a voxel never seen (w = 0) still breaks its cubes.
 TEST(MeshExtractor, MeshMinWeightMeshesObservedVoxelsBelowTheThreshold) {
   for (float mesh_min : {-1.0f, 0.0f}) {
