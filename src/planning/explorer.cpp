@@ -73,6 +73,11 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
+  if (!(direct_yaw_length >= 0.0) || !std::isfinite(direct_yaw_length)) {
+    return Status::Error("direct_yaw_length expected >= 0");
+  }
+  if (!(scan_yaw >= 0.0) || scan_yaw > 0.5 * M_PI) return Status::Error("scan_yaw expected in [0, pi / 2] rad");
+  if (!(scan_spacing > 0.0) || !std::isfinite(scan_spacing)) return Status::Error("scan_spacing expected > 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
@@ -332,6 +337,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());
       orientLeg(&path_, target);
+      addYawScan(&path_);
       have_target_ = true;
       d->action = ExplorerAction::kFly;
       d->path = path_;
@@ -356,6 +362,19 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
 void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const {
   std::vector<Eigen::Vector4d>& p = *path;
   if (!config_.travel_yaw || p.size() < 2) return;
+  double length = 0.0;
+  for (size_t i = 0; i + 1 < p.size(); ++i) length += (p[i + 1].head<3>() - p[i].head<3>()).norm();
+  if (length <= config_.direct_yaw_length) {
+    // A short hop: the yaw goes from the start's to the target's in
+    // proportion to the distance flown (the shorter way round).
+    const double start_yaw = p.front().w(), turn = wrapAngle(target.w() - start_yaw);
+    double along = 0.0;
+    for (size_t i = 1; i < p.size(); ++i) {
+      along += (p[i].head<3>() - p[i - 1].head<3>()).norm();
+      p[i].w() = wrapAngle(start_yaw + turn * (length > 0.0 ? along / length : 1.0));
+    }
+    return;
+  }
   // Heading of each segment; a (nearly) vertical one keeps the previous heading.
   const double start_yaw = p.front().w();
   double heading = start_yaw;
@@ -393,6 +412,30 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
       p.insert(p.begin() + 1, lead_point);
     }
   }
+}
+
+void Explorer::addYawScan(std::vector<Eigen::Vector4d>* path) const {
+  const std::vector<Eigen::Vector4d>& p = *path;
+  if (!config_.travel_yaw || !(config_.scan_yaw > 0.0) || p.size() < 3) return;
+  // Segments before the last one travel; the last one turns to the target.
+  const size_t travel_segments = p.size() - 2;
+  const double spacing = config_.scan_spacing;
+  std::vector<Eigen::Vector4d> out;
+  double side = 1.0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    out.push_back(p[i]);
+    if (i >= travel_segments) continue;
+    const Eigen::Vector3d a = p[i].head<3>(), b = p[i + 1].head<3>();
+    const double length = (b - a).norm();
+    // Swing points every `spacing`, none closer than half of it to the segment's end.
+    for (double s = spacing; length - s >= 0.5 * spacing; s += spacing) {
+      Eigen::Vector4d q;
+      q << a + (b - a) * (s / length), wrapAngle(p[i].w() + side * config_.scan_yaw);
+      out.push_back(q);
+      side = -side;
+    }
+  }
+  *path = std::move(out);
 }
 
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {

@@ -5,7 +5,21 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include "surface_nbv/util/angles.h"
+
 namespace surface_nbv {
+
+double yawOf(const geometry_msgs::Quaternion& q) {
+  return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
+}
+
+bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+bool finite(const geometry_msgs::Quaternion& q) {
+  return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
+         q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-12;
+}
+
 namespace {
 
 visualization_msgs::Marker layer(const std_msgs::Header& header, const std::string& ns, int type, double scale) {
@@ -93,6 +107,84 @@ void toFrontierMarkers(const Frontier& frontier, const std_msgs::Header& header,
     if (m->points.empty()) m->action = Marker::DELETE;  // an empty list would be refused by rviz
     markers->markers.push_back(*m);
   }
+}
+
+Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* frontier) {
+  *frontier = Frontier();
+  frontier->ises.resize(msg.ises.size());
+  for (size_t i = 0; i < msg.ises.size(); ++i) {
+    if (!finite(msg.ises[i])) return Status::Error("ise " + std::to_string(i) + " is not finite");
+    frontier->ises[i].position = Eigen::Vector3d(msg.ises[i].x, msg.ises[i].y, msg.ises[i].z);
+  }
+  for (uint32_t r : msg.remaining) {
+    if (r >= msg.ises.size()) return Status::Error("remaining index " + std::to_string(r) + " out of range");
+    frontier->ises[r].remaining = true;
+  }
+  frontier->remaining = msg.remaining.size();
+  frontier->scanned = msg.num_scanned;
+  frontier->viewpoints.resize(msg.viewpoints.size());
+  for (size_t i = 0; i < msg.viewpoints.size(); ++i) {
+    const surface_nbv::FrontierViewpoint& in = msg.viewpoints[i];
+    if (!finite(in.pose.position) || !finite(in.pose.orientation)) {
+      return Status::Error("viewpoint " + std::to_string(i) + " has a non-finite pose");
+    }
+    Viewpoint& v = frontier->viewpoints[i];
+    v.position = Eigen::Vector3d(in.pose.position.x, in.pose.position.y, in.pose.position.z);
+    v.yaw = yawOf(in.pose.orientation);
+    v.view_direction = Eigen::Vector3d(std::cos(v.yaw), std::sin(v.yaw), 0.0);
+    for (uint32_t k : in.visible_ises) {
+      if (k >= msg.ises.size()) return Status::Error("viewpoint " + std::to_string(i) + " sees ISE out of range");
+    }
+    v.visible.assign(in.visible_ises.begin(), in.visible_ises.end());
+    for (uint32_t k : in.sources) {
+      if (k >= msg.ises.size()) return Status::Error("viewpoint " + std::to_string(i) + " source ISE out of range");
+      frontier->ises[k].viewpoint = static_cast<int32_t>(i);
+    }
+    v.sources.assign(in.sources.begin(), in.sources.end());
+  }
+  frontier->clusters.resize(msg.clusters.size());
+  for (size_t c = 0; c < msg.clusters.size(); ++c) {
+    const surface_nbv::FrontierCluster& in = msg.clusters[c];
+    if (in.viewpoints.empty()) return Status::Error("cluster " + std::to_string(c) + " is empty");
+    if (!std::isfinite(in.gain) || in.gain < 0.0) return Status::Error("cluster " + std::to_string(c) + " gain");
+    for (uint32_t k : in.viewpoints) {
+      if (k >= msg.viewpoints.size()) {
+        return Status::Error("cluster " + std::to_string(c) + " viewpoint index out of range");
+      }
+      if (frontier->viewpoints[k].cluster >= 0) {
+        return Status::Error("viewpoint " + std::to_string(k) + " is in two clusters");
+      }
+      frontier->viewpoints[k].cluster = static_cast<int32_t>(c);
+    }
+    frontier->clusters[c].viewpoints.assign(in.viewpoints.begin(), in.viewpoints.end());
+    frontier->clusters[c].gain = in.gain;
+  }
+  return Status::Ok();
+}
+
+std::vector<Eigen::Vector4d> resamplePath(const std::vector<Eigen::Vector4d>& path, double spacing) {
+  std::vector<Eigen::Vector4d> out;
+  for (const Eigen::Vector4d& q : path) {
+    Eigen::Vector4d p = q;
+    p.w() = wrapAngle(p.w());
+    if (out.empty()) {
+      out.push_back(p);
+      continue;
+    }
+    const Eigen::Vector4d a = out.back();
+    const double length = (p.head<3>() - a.head<3>()).norm();
+    const double dyaw = wrapAngle(p.w() - a.w());
+    if (length < 1e-9 && std::abs(dyaw) < 1e-9) continue;
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+    for (int s = 1; s <= steps; ++s) {
+      const double t = static_cast<double>(s) / steps;
+      Eigen::Vector4d r;
+      r.head<3>() = a.head<3>() + t * (p.head<3>() - a.head<3>());
+      r.w() = wrapAngle(a.w() + t * dyaw);
+      out.push_back(r);
+    }
+  }
+  return out;
 }
 
 }  // namespace surface_nbv

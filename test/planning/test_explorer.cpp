@@ -324,6 +324,82 @@ TEST(Explorer, TurnLeadTurnsWhileFlyingInsteadOfInPlace) {
   EXPECT_NE(bad.validate().message().find("turn_lead"), std::string::npos);
 }
 
+// direct_yaw_length: a leg no longer than it turns from the UAV's yaw to the
+// target's along the way, with no turn to the travel heading first.
+TEST(Explorer, DirectYawLengthTurnsShortLegsStraightToTheTargetYaw) {
+  WallWorld world(true);
+  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
+  f.viewpoints[0].yaw = 2.0;
+  ExplorerConfig config;
+  config.travel_yaw = true;
+  config.turn_distance = 1.5;
+  config.direct_yaw_length = 100.0;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  ASSERT_GE(d.path.size(), 2u);
+  EXPECT_NEAR(d.path.front().w(), kUav.w(), 1e-9);
+  EXPECT_NEAR(d.path.back().w(), 2.0, 1e-9);
+  // The yaw moves monotonically towards the target's, in proportion to the distance.
+  double length = 0.0;
+  for (size_t i = 1; i < d.path.size(); ++i) length += (d.path[i] - d.path[i - 1]).head<3>().norm();
+  double along = 0.0;
+  const double turn = std::remainder(2.0 - kUav.w(), 2.0 * M_PI);
+  for (size_t i = 1; i < d.path.size(); ++i) {
+    along += (d.path[i] - d.path[i - 1]).head<3>().norm();
+    EXPECT_NEAR(std::remainder(d.path[i].w() - kUav.w() - turn * along / length, 2.0 * M_PI), 0.0, 1e-9) << i;
+  }
+  ExplorerConfig bad;
+  bad.direct_yaw_length = -1.0;
+  EXPECT_NE(bad.validate().message().find("direct_yaw_length"), std::string::npos);
+}
+
+// scan_yaw: points every scan_spacing metres on the travel part swing the yaw
+// to alternate sides of the travel heading; the final turn is unchanged.
+TEST(Explorer, ScanYawSwingsTheYawAroundTheHeadingWhileTravelling) {
+  WallWorld world(true);
+  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
+  f.viewpoints[0].yaw = 2.0;
+  ExplorerConfig config;
+  config.travel_yaw = true;
+  config.turn_distance = 1.5;
+  Explorer straight(config, pathConfig());
+  ASSERT_TRUE(straight.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision s = straight.update(f, kUav, false);
+  ASSERT_EQ(s.action, ExplorerAction::kFly) << s.message;
+  config.scan_yaw = 0.5;
+  config.scan_spacing = 0.5;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  // Same roadmap seed and map: the same vertices, with swing points between them.
+  ASSERT_GT(d.path.size(), s.path.size());
+  EXPECT_NEAR((d.path.back() - s.path.back()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((d.path[d.path.size() - 2] - s.path[s.path.size() - 2]).norm(), 0.0, 1e-9);
+  int swings = 0;
+  double last_side = 0.0;
+  for (size_t i = 0; i + 2 < d.path.size(); ++i) {
+    const Eigen::Vector2d step = (d.path[i + 1] - d.path[i]).head<2>();
+    if (step.norm() < 0.2) continue;
+    const double off = std::remainder(d.path[i].w() - std::atan2(step.y(), step.x()), 2.0 * M_PI);
+    if (std::abs(off) < 1e-6) continue;  // an original vertex looks along its segment
+    EXPECT_NEAR(std::abs(off), 0.5, 1e-6) << "vertex " << i;
+    EXPECT_NE(off > 0.0 ? 1.0 : -1.0, last_side) << "vertex " << i;
+    last_side = off > 0.0 ? 1.0 : -1.0;
+    ++swings;
+  }
+  EXPECT_GE(swings, 2);
+  expectFree(world.collision(), d.path);
+  ExplorerConfig bad;
+  bad.scan_yaw = 2.0;
+  EXPECT_NE(bad.validate().message().find("scan_yaw"), std::string::npos);
+  bad.scan_yaw = 0.5;
+  bad.scan_spacing = 0.0;
+  EXPECT_NE(bad.validate().message().find("scan_spacing"), std::string::npos);
+}
+
 // full_on_leg_end: reaching a target recomputes the whole tour from the UAV
 // instead of keeping the old order.
 TEST(Explorer, FullOnLegEndRecomputesTheTourWhenATargetIsReached) {

@@ -6,7 +6,10 @@
 //   ~kill_after ([20, 60]: the window of ROS time after the first frame, s)
 #include <signal.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <random>
 #include <string>
 #include <vector>
@@ -16,14 +19,32 @@
 
 namespace {
 
-// Pids of the processes started with __name:=NAME (roslaunch passes it).
+// True when process `pid` was started with ROS_MASTER_URI=`master` in its
+// environment (false when /proc/PID/environ cannot be read).
+bool sameMaster(int pid, const std::string& master) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/environ", std::ios::binary);
+  const std::string wanted = "ROS_MASTER_URI=" + master;
+  std::string entry;
+  while (std::getline(in, entry, '\0')) {
+    if (entry.rfind("ROS_MASTER_URI=", 0) == 0) return entry == wanted;
+  }
+  return false;
+}
+
+// Pids of the processes started with __name:=NAME (roslaunch passes it) under
+// this process's ROS master (same ROS_MASTER_URI), so that concurrent rostest
+// runs on the machine do not kill each other's nodes.
 std::vector<int> pidsOf(const std::string& name) {
   std::vector<int> pids;
+  const char* master = std::getenv("ROS_MASTER_URI");
+  if (master == nullptr) return pids;
   const std::string command = "pgrep -f -- '__name:=" + name + "( |$)'";
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return pids;
   int pid = 0;
-  while (std::fscanf(pipe, "%d", &pid) == 1) pids.push_back(pid);
+  while (std::fscanf(pipe, "%d", &pid) == 1) {
+    if (sameMaster(pid, master)) pids.push_back(pid);
+  }
   pclose(pipe);
   return pids;
 }

@@ -60,6 +60,18 @@ struct ExplorerConfig {
   // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
   // many metres per radian (speed / yaw rate turns at the full yaw rate).
   double turn_lead = 0.0;         // m/rad
+  // travel_yaw only: a leg no longer than this (path length) does not turn to
+  // its travel heading at all; its yaw goes from the UAV's to the target's
+  // along the leg, so short hops between nearby viewpoints do not stop for
+  // a turn in place and then turn back. 0 = every leg looks along its way.
+  double direct_yaw_length = 0.0; // m
+  // travel_yaw only: on the way to the final turn the yaw swings to either
+  // side of the travel heading by scan_yaw, alternating every scan_spacing
+  // metres, so the camera sweeps a wider band than its FOV while it flies
+  // (the swing takes less time than the metres at the reference speed).
+  // 0 = look straight along the way.
+  double scan_yaw = 0.0;          // rad
+  double scan_spacing = 2.0;      // m
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
@@ -198,6 +210,8 @@ class Explorer {
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
+  // Adds scan_yaw's swings to the travel part of an oriented leg.
+  void addYawScan(std::vector<Eigen::Vector4d>* path) const;
 
   ExplorerConfig config_;
   PathPlanner planner_;

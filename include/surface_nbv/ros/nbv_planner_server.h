@@ -47,17 +47,6 @@
 
 namespace surface_nbv {
 
-// SurfaceFrontier to the ROS-free Frontier the planner needs: ISE positions,
-// viewpoint position, yaw (from the pose's quaternion) and visible ISEs,
-// clusters (viewpoints, gain) with each viewpoint's cluster set. Error, with
-// `frontier` unspecified, on a non-finite value or an index out of range.
-Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* frontier);
-
-// `path` (x, y, z, yaw) resampled so that consecutive points are at most
-// `spacing` m apart, yaw interpolated linearly the shortest way round and
-// wrapped to (-pi, pi]; the vertices are kept, consecutive duplicates dropped.
-std::vector<Eigen::Vector4d> resamplePath(const std::vector<Eigen::Vector4d>& path, double spacing);
-
 class NbvPlannerServer {
  public:
   enum class State { kStopped, kRunning, kHovering, kDone };
