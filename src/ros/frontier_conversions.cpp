@@ -13,9 +13,9 @@ double yawOf(const geometry_msgs::Quaternion& q) {
   return std::atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z));
 }
 
-bool finite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool allFinite(const geometry_msgs::Point& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-bool finite(const geometry_msgs::Quaternion& q) {
+bool allFinite(const geometry_msgs::Quaternion& q) {
   return std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z) && std::isfinite(q.w) &&
          q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w > 1e-12;
 }
@@ -113,7 +113,7 @@ Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* fronti
   *frontier = Frontier();
   frontier->ises.resize(msg.ises.size());
   for (size_t i = 0; i < msg.ises.size(); ++i) {
-    if (!finite(msg.ises[i])) return Status::Error("ise " + std::to_string(i) + " is not finite");
+    if (!allFinite(msg.ises[i])) return Status::Error("ise " + std::to_string(i) + " is not finite");
     frontier->ises[i].position = Eigen::Vector3d(msg.ises[i].x, msg.ises[i].y, msg.ises[i].z);
   }
   for (uint32_t r : msg.remaining) {
@@ -125,7 +125,7 @@ Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* fronti
   frontier->viewpoints.resize(msg.viewpoints.size());
   for (size_t i = 0; i < msg.viewpoints.size(); ++i) {
     const surface_nbv::FrontierViewpoint& in = msg.viewpoints[i];
-    if (!finite(in.pose.position) || !finite(in.pose.orientation)) {
+    if (!allFinite(in.pose.position) || !allFinite(in.pose.orientation)) {
       return Status::Error("viewpoint " + std::to_string(i) + " has a non-finite pose");
     }
     Viewpoint& v = frontier->viewpoints[i];

@@ -118,7 +118,7 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
     return;
   }
   const geometry_msgs::Pose& pose = msg->pose.pose;
-  if (!finite(pose.position) || !finite(pose.orientation)) {
+  if (!allFinite(pose.position) || !allFinite(pose.orientation)) {
     stats_.count("odometry_malformed");
     return;
   }

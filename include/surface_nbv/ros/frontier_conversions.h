@@ -21,9 +21,9 @@ namespace surface_nbv {
 double yawOf(const geometry_msgs::Quaternion& q);
 
 // All coordinates finite.
-bool finite(const geometry_msgs::Point& p);
+bool allFinite(const geometry_msgs::Point& p);
 // All components finite and not the zero quaternion.
-bool finite(const geometry_msgs::Quaternion& q);
+bool allFinite(const geometry_msgs::Quaternion& q);
 
 // SurfaceFrontier to the ROS-free Frontier the planner needs: ISE positions,
 // viewpoint position, yaw (from the pose's quaternion) and visible ISEs,
