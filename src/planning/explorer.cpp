@@ -64,6 +64,7 @@ Status ExplorerConfig::validate() const {
   if (Status s = graph.validate(); !s) return s;
   if (Status s = tsp.validate(); !s) return s;
   if (!(match_radius > 0.0) || !std::isfinite(match_radius)) return Status::Error("match_radius expected > 0");
+  if (!(retarget_radius >= 0.0) || !std::isfinite(retarget_radius)) return Status::Error("retarget_radius expected >= 0");
   if (!(reach_tolerance > 0.0) || !std::isfinite(reach_tolerance)) return Status::Error("reach_tolerance expected > 0");
   if (max_failures < 1) return Status::Error("max_failures expected >= 1");
   if (max_visits < 1) return Status::Error("max_visits expected >= 1");
@@ -79,6 +80,7 @@ Status ExplorerConfig::validate() const {
   if (!(scan_yaw >= 0.0) || scan_yaw > 0.5 * M_PI) return Status::Error("scan_yaw expected in [0, pi / 2] rad");
   if (!(scan_spacing > 0.0) || !std::isfinite(scan_spacing)) return Status::Error("scan_spacing expected > 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
+  if (defer_visible < 0) return Status::Error("defer_visible expected >= 0");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
@@ -221,24 +223,40 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i)
     if (wanted(frontier, i)) viewpoints.add(frontier.viewpoints[i].position, static_cast<int>(i));
   // Tour viewpoints no wanted frontier viewpoint is near were covered.
-  std::vector<char> matched(frontier.viewpoints.size(), 0);
-  std::vector<Eigen::Vector4d> kept;
+  std::vector<char> matched(frontier.viewpoints.size(), 0), near(tour_.size(), 0);
   for (size_t k = 0; k < tour_.size(); ++k) {
-    bool near = false;
     viewpoints.any(tour_[k].head<3>(), r, [&](int i) {
       matched[i] = 1;
-      near = true;
+      near[k] = 1;
       return false;  // mark every match
     });
-    if (near) {
+  }
+  std::vector<Eigen::Vector4d> kept;
+  bool removed = false;
+  for (size_t k = 0; k < tour_.size(); ++k) {
+    if (near[k]) {
       kept.push_back(tour_[k]);
-    } else if (k == 0 && have_target_) {
-      have_target_ = false;
-      ++stats_.targets_covered;
-      d->reason = ReplanReason::kTargetCovered;
+      continue;
+    }
+    removed = true;
+    if (k != 0 || !have_target_) continue;
+    have_target_ = false;
+    ++stats_.targets_covered;
+    d->reason = ReplanReason::kTargetCovered;
+    // retarget_radius: the nearest wanted viewpoint around the old target that
+    // no tour viewpoint stands for takes its place (a new leg is planned to it).
+    int nearest = -1;
+    double best = config_.retarget_radius;
+    for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
+      const double dist = (frontier.viewpoints[i].position - tour_[0].head<3>()).norm();
+      if (!matched[i] && wanted(frontier, i) && dist <= best) best = dist, nearest = static_cast<int>(i);
+    }
+    if (nearest >= 0) {
+      matched[nearest] = 1;
+      kept.push_back(configurationOf(frontier.viewpoints[nearest]));
+      ++stats_.retargets;
     }
   }
-  const bool removed = kept.size() != tour_.size();
   tour_ = std::move(kept);
   if (tour_.empty()) return false;
   // Wanted frontier viewpoints near no tour viewpoint are new: cheapest insertion.
@@ -246,6 +264,11 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
     if (matched[i] || !wanted(frontier, i)) continue;
     const Eigen::Vector4d q = configurationOf(frontier.viewpoints[i]);
+    if (frontier.viewpoints[i].visible.size() < static_cast<size_t>(config_.defer_visible)) {
+      tour_.push_back(q);  // little to see from it: after everything else
+      ++inserted;
+      continue;
+    }
     const Eigen::Vector3d x = q.head<3>();
     // Position p: before tour_[p]; tour_[0] stays first while it is the target.
     size_t best = tour_.size();

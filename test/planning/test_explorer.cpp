@@ -153,6 +153,59 @@ TEST(Explorer, CoveredTargetGivesALegToTheNextViewpoint) {
   EXPECT_EQ(explorer.stats().targets_covered, 1u);
 }
 
+// retarget_radius: a covered target whose ISE left a viewpoint within the
+// radius is replaced by that viewpoint, not by the tour's next one.
+TEST(Explorer, RetargetRadiusKeepsTheTargetNearWhereItWas) {
+  WallWorld world(true);
+  const Eigen::Vector3d target(-3, -2, 2.5), next(-3, 0.5, 2.5), last(-3, 3.5, 2.5);
+  // The target's viewpoint moves 4 m, between the tour's other two: cheapest
+  // insertion puts it after the next one.
+  const Eigen::Vector3d moved(-3, 2.0, 2.5);
+  for (double radius : {0.0, 4.5}) {
+    ExplorerConfig config;
+    config.retarget_radius = radius;
+    Explorer explorer(config, pathConfig());
+    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    const ExplorerDecision first = explorer.update(makeFrontier({{target}, {next}, {last}}), kUav, false);
+    ASSERT_EQ(first.action, ExplorerAction::kFly);
+    ASSERT_NEAR((first.target.head<3>() - target).norm(), 0.0, 1e-9) << "the test needs the tour to start there";
+    const ExplorerDecision d = explorer.update(makeFrontier({{next}, {moved}, {last}}), kUav, false);
+    ASSERT_EQ(d.action, ExplorerAction::kFly) << "radius " << radius;
+    EXPECT_EQ(d.reason, ReplanReason::kTargetCovered);
+    EXPECT_NEAR((d.target.head<3>() - (radius > 0.0 ? moved : next)).norm(), 0.0, 1e-9) << "radius " << radius;
+    EXPECT_EQ(explorer.stats().retargets, radius > 0.0 ? 1u : 0u);
+    EXPECT_EQ(explorer.tour().size(), 3u);
+  }
+  ExplorerConfig bad;
+  bad.retarget_radius = -1.0;
+  EXPECT_NE(bad.validate().message().find("retarget_radius"), std::string::npos);
+}
+
+// defer_visible: a new viewpoint that sees fewer ISEs than it joins the tour
+// at the end instead of where it costs the least detour.
+TEST(Explorer, DeferVisibleAppendsViewpointsThatSeeLittle) {
+  WallWorld world(true);
+  const Eigen::Vector3d target(-3, -2, 2.5), next(-3, 0.5, 2.5), last(-3, 3.5, 2.5);
+  const Eigen::Vector3d added(-3, -0.75, 2.5);  // between the target and the next one
+  for (int defer : {0, 2}) {
+    ExplorerConfig config;
+    config.defer_visible = defer;
+    Explorer explorer(config, pathConfig());
+    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    const ExplorerDecision first = explorer.update(makeFrontier({{target}, {next}, {last}}), kUav, false);
+    ASSERT_EQ(first.action, ExplorerAction::kFly);
+    ASSERT_NEAR((first.target.head<3>() - target).norm(), 0.0, 1e-9) << "the test needs the tour to start there";
+    // Every viewpoint of makeFrontier sees one ISE.
+    explorer.update(makeFrontier({{target}, {next}, {last}, {added}}), kUav, false);
+    ASSERT_EQ(explorer.tour().size(), 4u);
+    const size_t at = defer > 0 ? 3 : 1;
+    EXPECT_NEAR((explorer.tour()[at].head<3>() - added).norm(), 0.0, 1e-9) << "defer_visible " << defer;
+  }
+  ExplorerConfig bad;
+  bad.defer_visible = -1;
+  EXPECT_NE(bad.validate().message().find("defer_visible"), std::string::npos);
+}
+
 TEST(Explorer, ReachedTargetsAdvanceAndRevisitsAreBlacklisted) {
   WallWorld world(true);
   ExplorerConfig config;

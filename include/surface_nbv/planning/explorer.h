@@ -41,6 +41,11 @@ struct ExplorerConfig {
   ClusterGraphConfig graph;
   LinKernighanSolver::Config tsp;
   double match_radius = 1.0;      // m: a tour viewpoint is the same as a frontier one this close
+  // When the current target leaves the frontier (its ISE grew or moved as
+  // the map filled in), the nearest frontier viewpoint within this distance
+  // of it becomes the target instead of the next one in the tour, so the
+  // UAV keeps its direction. 0 = off: the tour's next viewpoint follows.
+  double retarget_radius = 0.0;   // m
   double reach_tolerance = 0.6;   // m: a finished leg this close to its target visited it
   int max_failures = 3;           // unreachable attempts before a place is blacklisted
   int max_visits = 2;             // visits that left a viewpoint in the frontier before blacklisting
@@ -74,6 +79,10 @@ struct ExplorerConfig {
   double scan_spacing = 2.0;      // m
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
+  // Local updates: a new viewpoint that sees fewer ISEs than this joins the
+  // tour at its end instead of by cheapest insertion, so the UAV sweeps what
+  // shows much before it comes back for what shows little. 0 = off.
+  int defer_visible = 0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
   // planner's oracle (straight line when free, else the roadmap's path
   // length, +inf when it connects nothing); false, straight lines.
@@ -146,6 +155,7 @@ struct TourArc {
 struct ExplorerStats {
   size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
+  size_t retargets = 0;         // covered targets replaced by a viewpoint near them (retarget_radius)
   size_t tour_viewpoints = 0, clusters = 0;
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
