@@ -21,6 +21,7 @@
 #include "surface_nbv/eval/surface_sampler.h"
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/mission/flight_profile.h"
 #include "surface_nbv/mission/mission_runner.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/cli_args.h"
@@ -50,6 +51,7 @@ struct TrialRow {
   double path_length = 0, flight_min = 0, coverage = 0, mean = 0, std_dev = 0, rmse = 0, wall_s = 0;
   double plan_ms_max = 0, frontier_ms_max = 0;
   MissionStageTimes times;
+  FlightProfile profile;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
 };
 
@@ -69,6 +71,16 @@ Status writeCsvs(const std::string& dir, const MissionResult& r) {
   }
   if (!path || !events) return Status::Error("cannot write path.csv / events.csv in " + dir);
   return Status::Ok();
+}
+
+// "65.8 % cruise, 17.2 % moving slower, ..., 704 rad of yaw": shares of the flight time.
+std::string profileLine(const FlightProfile& p) {
+  const double percent = p.flight_s > 0.0 ? 100.0 / p.flight_s : 0.0;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%.1f %% cruise, %.1f %% moving slower, %.1f %% turning in place, %.1f %% stopped "
+                "(vertical %.0f %%), %.0f rad of yaw", percent * p.cruise_s, percent * p.moving_s,
+                percent * p.turning_in_place_s, percent * p.stopped_s, percent * p.vertical_s, p.total_yaw_rad);
+  return line;
 }
 
 void meanStd(const std::vector<double>& v, double* mean, double* sd) {
@@ -175,6 +187,7 @@ int main(int argc, char** argv) {
     row.rmse = eval.error_stats.rmse;
     row.wall_s = r.wall_time;
     row.times = r.times;
+    row.profile = profileFlight(r.flown, r.flown_t, trial_config.speed);
     row.frames = r.frames;
     row.updates = r.frontier_updates;
     row.full = r.explorer.full_recomputes;
@@ -191,6 +204,7 @@ int main(int argc, char** argv) {
                 r.completed ? "completed" : "stopped", row.flight_min, row.path_length, 100.0 * row.coverage,
                 100.0 * row.mean, 100.0 * row.std_dev, 100.0 * row.rmse, row.wall_s,
                 r.flight_time / std::max(row.wall_s, 1e-9), r.end_reason.c_str());
+    std::printf("  flight: %s\n", profileLine(row.profile).c_str());
     std::fflush(stdout);
     if (!args.has("no-plots")) {
       const std::string script = std::string(NBV_SOURCE_DIR) + "/scripts/plot_mission.py";
@@ -244,6 +258,10 @@ int main(int argc, char** argv) {
     json.beginObject("stage_ms").value("render", r.times.render).value("integrate", r.times.integrate);
     json.value("collision", r.times.collision).value("frontier", r.times.frontier).value("graph", r.times.graph);
     json.value("tour", r.times.tour).value("path", r.times.path).value("tracker", r.times.tracker).endObject();
+    const FlightProfile& p = r.profile;
+    json.beginObject("flight_profile").value("cruise_s", p.cruise_s).value("moving_s", p.moving_s);
+    json.value("turning_in_place_s", p.turning_in_place_s).value("stopped_s", p.stopped_s);
+    json.value("vertical_s", p.vertical_s).value("total_yaw_rad", p.total_yaw_rad).endObject();
     json.endObject();
   }
   json.endArray().endObject();
@@ -280,6 +298,10 @@ int main(int argc, char** argv) {
                   r.times.tour, r.times.path, r.times.tracker, r.frontier_ms_max, r.plan_ms_max, r.end_reason.c_str());
     md << line;
   }
+  md << "\nWhere the flight time goes, per trial: cruise at 88 % of the reference speed or more, moving slower "
+        "from 0.2 m/s, turning in place below that at over 0.3 rad/s, else stopped; vertical is the part of cruise "
+        "and moving that climbs or descends more than it goes sideways.\n\n";
+  for (const TrialRow& r : rows) md << "- trial " << r.trial << ": " << profileLine(r.profile) << "\n";
   std::printf("summary over %d trial(s):\n", trials);
   for (Stat& s : stats) {
     double m, sd;
