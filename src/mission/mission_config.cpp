@@ -174,6 +174,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("turn_lead", &c->explorer.turn_lead);
   m.get("direct_yaw_length", &c->explorer.direct_yaw_length);
   m.get("scan_yaw", &c->explorer.scan_yaw);
+  m.get("backtrack_distance", &c->explorer.backtrack_distance);
   m.get("defer_visible", &c->explorer.defer_visible);
   m.get("retarget_radius", &c->explorer.retarget_radius);
   m.get("scan_spacing", &c->explorer.scan_spacing);

@@ -48,6 +48,11 @@ class PointHash {
   std::unordered_map<int64_t, std::vector<std::pair<Eigen::Vector3d, int>>> cells_;
 };
 
+// backtrack_distance: flown positions are kept this far apart, at most this many.
+constexpr double kTrailSpacing = 0.5;
+constexpr size_t kMaxTrail = 4000;
+constexpr int kMaxBacktrackUpdates = 30;
+
 // Frontier viewpoints worth visiting: in a cluster of positive gain.
 bool wanted(const Frontier& f, size_t i) {
   const int32_t c = f.viewpoints[i].cluster;
@@ -83,6 +88,9 @@ Status ExplorerConfig::validate() const {
   if (defer_visible < 0) return Status::Error("defer_visible expected >= 0");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
+  if (!(backtrack_distance >= 0.0) || !std::isfinite(backtrack_distance)) {
+    return Status::Error("backtrack_distance expected >= 0");
+  }
   return Status::Ok();
 }
 
@@ -132,6 +140,8 @@ void Explorer::reset() {
   places_.clear();
   blacklist_.clear();
   arcs_.clear();
+  trail_.clear();
+  backtracking_ = false;
   stats_ = ExplorerStats();
 }
 
@@ -382,6 +392,33 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   d->timings.path_ms = msSince(t0);
 }
 
+bool Explorer::backtrack(const Eigen::Vector4d& uav, ExplorerDecision* d) {
+  std::vector<Eigen::Vector4d> path{uav};
+  Eigen::Vector3d previous = uav.head<3>();
+  double flown = 0.0;
+  while (!trail_.empty() && flown < config_.backtrack_distance) {
+    const Eigen::Vector3d p = trail_.back();
+    trail_.pop_back();
+    const double step = (p - previous).norm();
+    if (step < 0.1) continue;
+    // The yaw stays: the UAV backs out without turning.
+    path.emplace_back(p.x(), p.y(), p.z(), uav.w());
+    flown += step;
+    previous = p;
+  }
+  if (path.size() < 2) return false;
+  backtracking_ = true;
+  backtrack_end_ = path.back().head<3>();
+  backtrack_updates_ = 0;
+  path_.clear();
+  ++stats_.backtracks;
+  d->action = ExplorerAction::kFly;
+  d->path = path;
+  d->target = path.back();
+  d->message += "; backing out " + std::to_string(static_cast<int>(std::lround(flown))) + " m along the flown path";
+  return true;
+}
+
 void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const {
   std::vector<Eigen::Vector4d>& p = *path;
   if (!config_.travel_yaw || p.size() < 2) return;
@@ -464,6 +501,17 @@ void Explorer::addYawScan(std::vector<Eigen::Vector4d>* path) const {
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
   const auto t0 = Clock::now();
   ExplorerDecision d;
+  // A backtrack leg is over when the tracker says so, the UAV is at its end,
+  // or (a refused trajectory never finishes) after kMaxBacktrackUpdates.
+  if (backtracking_ && (leg_finished || (uav.head<3>() - backtrack_end_).norm() <= config_.reach_tolerance ||
+                        ++backtrack_updates_ > kMaxBacktrackUpdates)) {
+    backtracking_ = false;
+  }
+  if (config_.backtrack_distance > 0.0 && !backtracking_ && uav.head<3>().allFinite() &&
+      (trail_.empty() || (uav.head<3>() - trail_.back()).norm() >= kTrailSpacing)) {
+    trail_.push_back(uav.head<3>());
+    if (trail_.size() > kMaxTrail) trail_.erase(trail_.begin(), trail_.begin() + kMaxTrail / 4);
+  }
   if (leg_finished && have_target_ && !tour_.empty()) {
     const Eigen::Vector4d target = tour_.front();
     if ((uav.head<3>() - target.head<3>()).norm() <= config_.reach_tolerance) {
@@ -543,6 +591,8 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
                 std::to_string(blacklist_.size()) + " place(s) blacklisted; " + d.message;
   } else if (have_target_ && !pathBlocked(uav)) {
     d.action = ExplorerAction::kContinue;
+  } else if (backtracking_) {
+    d.action = ExplorerAction::kContinue;  // plan again where the backtrack leg ends
   } else {
     if (have_target_) {
       ++stats_.paths_blocked;
@@ -553,6 +603,7 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     if (d.action == ExplorerAction::kHover && tour_.empty() && fullRecompute(plannable(frontier), uav, &d)) {
       nextLeg(uav, &d);
     }
+    if (d.action == ExplorerAction::kHover && config_.backtrack_distance > 0.0) backtrack(uav, &d);
   }
   stats_.tour_viewpoints = tour_.size();
   d.timings.total_ms = msSince(t0);

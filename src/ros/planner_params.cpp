@@ -58,6 +58,7 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("turn_lead", &e->turn_lead);
   r->get("direct_yaw_length", &e->direct_yaw_length);
   r->get("scan_yaw", &e->scan_yaw);
+  r->get("backtrack_distance", &e->backtrack_distance);
   r->get("defer_visible", &e->defer_visible);
   r->get("retarget_radius", &e->retarget_radius);
   r->get("scan_spacing", &e->scan_spacing);

@@ -254,6 +254,50 @@ TEST(Explorer, UnreachableViewpointIsBlacklistedAfterMaxFailures) {
   EXPECT_EQ(explorer.stats().leg_failures, 2u);
 }
 
+// backtrack_distance: when no leg can be planned from where the UAV is, it
+// backs out along the positions it flew, further on each new failure, and
+// hovers once the trail is used up.
+TEST(Explorer, BacktracksAlongTheFlownPathWhenNoLegCanBePlanned) {
+  WallWorld world(false);  // the wall is closed: the target cannot be reached
+  ExplorerConfig config;
+  config.max_failures = 100;
+  config.backtrack_distance = 2.0;
+  PathPlannerConfig path = pathConfig();
+  path.iteration_budget = 300;
+  Explorer explorer(config, path);
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  auto at = [](int k) { return Eigen::Vector4d(-4.0, -3.0 + 0.6 * k, 2.5, 0.3); };
+  // Nothing seen yet: the explorer hovers, and keeps the positions.
+  for (int k = 0; k < 5; ++k) ASSERT_EQ(explorer.update(Frontier(), at(k), false).action, ExplorerAction::kHover);
+  const Frontier f = makeFrontier({{{4, -3, 2.5}}});
+  ExplorerDecision d = explorer.update(f, at(5), false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  ASSERT_EQ(d.path.size(), 5u);
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR((d.path[i] - at(5 - i)).norm(), 0.0, 1e-9) << "vertex " << i;
+  EXPECT_NE(d.message.find("backing out 2 m"), std::string::npos) << d.message;
+  EXPECT_EQ(explorer.stats().backtracks, 1u);
+  // On the way back it does not plan.
+  EXPECT_EQ(explorer.update(f, at(4), false).action, ExplorerAction::kContinue);
+  // At the end it plans again, fails again, and backs out over what is left.
+  d = explorer.update(f, at(1), true);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  ASSERT_EQ(d.path.size(), 2u);
+  EXPECT_NEAR((d.path.back() - at(0)).norm(), 0.0, 1e-9);
+  d = explorer.update(f, at(0), true);
+  EXPECT_EQ(d.action, ExplorerAction::kHover) << d.message;
+  EXPECT_EQ(explorer.stats().backtracks, 2u);
+
+  // Off: the first failure hovers.
+  config.backtrack_distance = 0.0;
+  Explorer plain(config, path);
+  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
+  for (int k = 0; k < 5; ++k) plain.update(Frontier(), at(k), false);
+  EXPECT_EQ(plain.update(f, at(5), false).action, ExplorerAction::kHover);
+  ExplorerConfig bad;
+  bad.backtrack_distance = -1.0;
+  EXPECT_NE(bad.validate().message().find("backtrack_distance"), std::string::npos);
+}
+
 TEST(Explorer, ObstacleOnTheLegGivesANewFreeLeg) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());

@@ -101,6 +101,11 @@ struct ExplorerConfig {
   // has seen nothing yet (a late first frame), not a finished mission: the
   // explorer hovers through this many such frontiers before it says complete.
   int empty_updates_before_done = 10;
+  // When no leg to any tour viewpoint can be planned from where the UAV is
+  // (a pocket whose way out the map now calls too tight), fly back this far
+  // along the UAV's own flown positions, which it has physically passed, and
+  // plan again from there; further back on each new failure. 0 = hover.
+  double backtrack_distance = 0.0;  // m
 
   // Names the first bad key.
   Status validate() const;
@@ -159,6 +164,7 @@ struct ExplorerStats {
   size_t tour_viewpoints = 0, clusters = 0;
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
+  size_t backtracks = 0;        // legs back along the flown positions (backtrack_distance)
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -218,6 +224,8 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
+  // A leg back along trail_ (backtrack_distance); false when the trail is used up.
+  bool backtrack(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
   // Adds scan_yaw's swings to the travel part of an oriented leg.
@@ -234,6 +242,10 @@ class Explorer {
   std::vector<Eigen::Vector4d> path_;   // current leg
   bool have_target_ = false;
   bool requested_ = false;
+  std::vector<Eigen::Vector3d> trail_;  // flown positions, about half a metre apart
+  bool backtracking_ = false;           // flying a backtrack leg
+  Eigen::Vector3d backtrack_end_ = Eigen::Vector3d::Zero();
+  int backtrack_updates_ = 0;           // updates since it began (a watchdog)
   bool seen_ises_ = false;      // some frontier held an ISE
   int empty_updates_ = 0;       // frontiers without ISEs while !seen_ises_
   std::vector<Place> places_;
