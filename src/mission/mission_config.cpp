@@ -172,12 +172,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("travel_yaw", &c->explorer.travel_yaw);
   m.get("turn_distance", &c->explorer.turn_distance);
   m.get("turn_lead", &c->explorer.turn_lead);
-  m.get("direct_yaw_length", &c->explorer.direct_yaw_length);
-  m.get("scan_yaw", &c->explorer.scan_yaw);
-  m.get("backtrack_distance", &c->explorer.backtrack_distance);
-  m.get("defer_visible", &c->explorer.defer_visible);
-  m.get("retarget_radius", &c->explorer.retarget_radius);
-  m.get("scan_spacing", &c->explorer.scan_spacing);
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("path_distances", &c->explorer.path_distances);

@@ -48,11 +48,6 @@ class PointHash {
   std::unordered_map<int64_t, std::vector<std::pair<Eigen::Vector3d, int>>> cells_;
 };
 
-// backtrack_distance: flown positions are kept this far apart, at most this many.
-constexpr double kTrailSpacing = 0.5;
-constexpr size_t kMaxTrail = 4000;
-constexpr int kMaxBacktrackUpdates = 30;
-
 // Frontier viewpoints worth visiting: in a cluster of positive gain.
 bool wanted(const Frontier& f, size_t i) {
   const int32_t c = f.viewpoints[i].cluster;
@@ -69,7 +64,6 @@ Status ExplorerConfig::validate() const {
   if (Status s = graph.validate(); !s) return s;
   if (Status s = tsp.validate(); !s) return s;
   if (!(match_radius > 0.0) || !std::isfinite(match_radius)) return Status::Error("match_radius expected > 0");
-  if (!(retarget_radius >= 0.0) || !std::isfinite(retarget_radius)) return Status::Error("retarget_radius expected >= 0");
   if (!(reach_tolerance > 0.0) || !std::isfinite(reach_tolerance)) return Status::Error("reach_tolerance expected > 0");
   if (max_failures < 1) return Status::Error("max_failures expected >= 1");
   if (max_visits < 1) return Status::Error("max_visits expected >= 1");
@@ -79,18 +73,9 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
-  if (!(direct_yaw_length >= 0.0) || !std::isfinite(direct_yaw_length)) {
-    return Status::Error("direct_yaw_length expected >= 0");
-  }
-  if (!(scan_yaw >= 0.0) || scan_yaw > 0.5 * M_PI) return Status::Error("scan_yaw expected in [0, pi / 2] rad");
-  if (!(scan_spacing > 0.0) || !std::isfinite(scan_spacing)) return Status::Error("scan_spacing expected > 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
-  if (defer_visible < 0) return Status::Error("defer_visible expected >= 0");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
-  if (!(backtrack_distance >= 0.0) || !std::isfinite(backtrack_distance)) {
-    return Status::Error("backtrack_distance expected >= 0");
-  }
   return Status::Ok();
 }
 
@@ -140,8 +125,6 @@ void Explorer::reset() {
   places_.clear();
   blacklist_.clear();
   arcs_.clear();
-  trail_.clear();
-  backtracking_ = false;
   stats_ = ExplorerStats();
 }
 
@@ -233,40 +216,24 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i)
     if (wanted(frontier, i)) viewpoints.add(frontier.viewpoints[i].position, static_cast<int>(i));
   // Tour viewpoints no wanted frontier viewpoint is near were covered.
-  std::vector<char> matched(frontier.viewpoints.size(), 0), near(tour_.size(), 0);
+  std::vector<char> matched(frontier.viewpoints.size(), 0);
+  std::vector<Eigen::Vector4d> kept;
   for (size_t k = 0; k < tour_.size(); ++k) {
+    bool near = false;
     viewpoints.any(tour_[k].head<3>(), r, [&](int i) {
       matched[i] = 1;
-      near[k] = 1;
+      near = true;
       return false;  // mark every match
     });
-  }
-  std::vector<Eigen::Vector4d> kept;
-  bool removed = false;
-  for (size_t k = 0; k < tour_.size(); ++k) {
-    if (near[k]) {
+    if (near) {
       kept.push_back(tour_[k]);
-      continue;
-    }
-    removed = true;
-    if (k != 0 || !have_target_) continue;
-    have_target_ = false;
-    ++stats_.targets_covered;
-    d->reason = ReplanReason::kTargetCovered;
-    // retarget_radius: the nearest wanted viewpoint around the old target that
-    // no tour viewpoint stands for takes its place (a new leg is planned to it).
-    int nearest = -1;
-    double best = config_.retarget_radius;
-    for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
-      const double dist = (frontier.viewpoints[i].position - tour_[0].head<3>()).norm();
-      if (!matched[i] && wanted(frontier, i) && dist <= best) best = dist, nearest = static_cast<int>(i);
-    }
-    if (nearest >= 0) {
-      matched[nearest] = 1;
-      kept.push_back(configurationOf(frontier.viewpoints[nearest]));
-      ++stats_.retargets;
+    } else if (k == 0 && have_target_) {
+      have_target_ = false;
+      ++stats_.targets_covered;
+      d->reason = ReplanReason::kTargetCovered;
     }
   }
+  const bool removed = kept.size() != tour_.size();
   tour_ = std::move(kept);
   if (tour_.empty()) return false;
   // Wanted frontier viewpoints near no tour viewpoint are new: cheapest insertion.
@@ -274,11 +241,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
     if (matched[i] || !wanted(frontier, i)) continue;
     const Eigen::Vector4d q = configurationOf(frontier.viewpoints[i]);
-    if (frontier.viewpoints[i].visible.size() < static_cast<size_t>(config_.defer_visible)) {
-      tour_.push_back(q);  // little to see from it: after everything else
-      ++inserted;
-      continue;
-    }
     const Eigen::Vector3d x = q.head<3>();
     // Position p: before tour_[p]; tour_[0] stays first while it is the target.
     size_t best = tour_.size();
@@ -370,7 +332,6 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());
       orientLeg(&path_, target);
-      addYawScan(&path_);
       have_target_ = true;
       d->action = ExplorerAction::kFly;
       d->path = path_;
@@ -392,49 +353,9 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   d->timings.path_ms = msSince(t0);
 }
 
-bool Explorer::backtrack(const Eigen::Vector4d& uav, ExplorerDecision* d) {
-  std::vector<Eigen::Vector4d> path{uav};
-  Eigen::Vector3d previous = uav.head<3>();
-  double flown = 0.0;
-  while (!trail_.empty() && flown < config_.backtrack_distance) {
-    const Eigen::Vector3d p = trail_.back();
-    trail_.pop_back();
-    const double step = (p - previous).norm();
-    if (step < 0.1) continue;
-    // The yaw stays: the UAV backs out without turning.
-    path.emplace_back(p.x(), p.y(), p.z(), uav.w());
-    flown += step;
-    previous = p;
-  }
-  if (path.size() < 2) return false;
-  backtracking_ = true;
-  backtrack_end_ = path.back().head<3>();
-  backtrack_updates_ = 0;
-  path_.clear();
-  ++stats_.backtracks;
-  d->action = ExplorerAction::kFly;
-  d->path = path;
-  d->target = path.back();
-  d->message += "; backing out " + std::to_string(static_cast<int>(std::lround(flown))) + " m along the flown path";
-  return true;
-}
-
 void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const {
   std::vector<Eigen::Vector4d>& p = *path;
   if (!config_.travel_yaw || p.size() < 2) return;
-  double length = 0.0;
-  for (size_t i = 0; i + 1 < p.size(); ++i) length += (p[i + 1].head<3>() - p[i].head<3>()).norm();
-  if (length <= config_.direct_yaw_length) {
-    // A short hop: the yaw goes from the start's to the target's in
-    // proportion to the distance flown (the shorter way round).
-    const double start_yaw = p.front().w(), turn = wrapAngle(target.w() - start_yaw);
-    double along = 0.0;
-    for (size_t i = 1; i < p.size(); ++i) {
-      along += (p[i].head<3>() - p[i - 1].head<3>()).norm();
-      p[i].w() = wrapAngle(start_yaw + turn * (length > 0.0 ? along / length : 1.0));
-    }
-    return;
-  }
   // Heading of each segment; a (nearly) vertical one keeps the previous heading.
   const double start_yaw = p.front().w();
   double heading = start_yaw;
@@ -474,44 +395,9 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
   }
 }
 
-void Explorer::addYawScan(std::vector<Eigen::Vector4d>* path) const {
-  const std::vector<Eigen::Vector4d>& p = *path;
-  if (!config_.travel_yaw || !(config_.scan_yaw > 0.0) || p.size() < 3) return;
-  // Segments before the last one travel; the last one turns to the target.
-  const size_t travel_segments = p.size() - 2;
-  const double spacing = config_.scan_spacing;
-  std::vector<Eigen::Vector4d> out;
-  double side = 1.0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    out.push_back(p[i]);
-    if (i >= travel_segments) continue;
-    const Eigen::Vector3d a = p[i].head<3>(), b = p[i + 1].head<3>();
-    const double length = (b - a).norm();
-    // Swing points every `spacing`, none closer than half of it to the segment's end.
-    for (double s = spacing; length - s >= 0.5 * spacing; s += spacing) {
-      Eigen::Vector4d q;
-      q << a + (b - a) * (s / length), wrapAngle(p[i].w() + side * config_.scan_yaw);
-      out.push_back(q);
-      side = -side;
-    }
-  }
-  *path = std::move(out);
-}
-
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
   const auto t0 = Clock::now();
   ExplorerDecision d;
-  // A backtrack leg is over when the tracker says so, the UAV is at its end,
-  // or (a refused trajectory never finishes) after kMaxBacktrackUpdates.
-  if (backtracking_ && (leg_finished || (uav.head<3>() - backtrack_end_).norm() <= config_.reach_tolerance ||
-                        ++backtrack_updates_ > kMaxBacktrackUpdates)) {
-    backtracking_ = false;
-  }
-  if (config_.backtrack_distance > 0.0 && !backtracking_ && uav.head<3>().allFinite() &&
-      (trail_.empty() || (uav.head<3>() - trail_.back()).norm() >= kTrailSpacing)) {
-    trail_.push_back(uav.head<3>());
-    if (trail_.size() > kMaxTrail) trail_.erase(trail_.begin(), trail_.begin() + kMaxTrail / 4);
-  }
   if (leg_finished && have_target_ && !tour_.empty()) {
     const Eigen::Vector4d target = tour_.front();
     if ((uav.head<3>() - target.head<3>()).norm() <= config_.reach_tolerance) {
@@ -591,8 +477,6 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
                 std::to_string(blacklist_.size()) + " place(s) blacklisted; " + d.message;
   } else if (have_target_ && !pathBlocked(uav)) {
     d.action = ExplorerAction::kContinue;
-  } else if (backtracking_) {
-    d.action = ExplorerAction::kContinue;  // plan again where the backtrack leg ends
   } else {
     if (have_target_) {
       ++stats_.paths_blocked;
@@ -603,7 +487,6 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     if (d.action == ExplorerAction::kHover && tour_.empty() && fullRecompute(plannable(frontier), uav, &d)) {
       nextLeg(uav, &d);
     }
-    if (d.action == ExplorerAction::kHover && config_.backtrack_distance > 0.0) backtrack(uav, &d);
   }
   stats_.tour_viewpoints = tour_.size();
   d.timings.total_ms = msSince(t0);

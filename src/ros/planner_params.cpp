@@ -56,12 +56,6 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("travel_yaw", &e->travel_yaw);
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
-  r->get("direct_yaw_length", &e->direct_yaw_length);
-  r->get("scan_yaw", &e->scan_yaw);
-  r->get("backtrack_distance", &e->backtrack_distance);
-  r->get("defer_visible", &e->defer_visible);
-  r->get("retarget_radius", &e->retarget_radius);
-  r->get("scan_spacing", &e->scan_spacing);
   r->get("min_visible", &e->min_visible);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);

@@ -153,59 +153,6 @@ TEST(Explorer, CoveredTargetGivesALegToTheNextViewpoint) {
   EXPECT_EQ(explorer.stats().targets_covered, 1u);
 }
 
-// retarget_radius: a covered target whose ISE left a viewpoint within the
-// radius is replaced by that viewpoint, not by the tour's next one.
-TEST(Explorer, RetargetRadiusKeepsTheTargetNearWhereItWas) {
-  WallWorld world(true);
-  const Eigen::Vector3d target(-3, -2, 2.5), next(-3, 0.5, 2.5), last(-3, 3.5, 2.5);
-  // The target's viewpoint moves 4 m, between the tour's other two: cheapest
-  // insertion puts it after the next one.
-  const Eigen::Vector3d moved(-3, 2.0, 2.5);
-  for (double radius : {0.0, 4.5}) {
-    ExplorerConfig config;
-    config.retarget_radius = radius;
-    Explorer explorer(config, pathConfig());
-    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-    const ExplorerDecision first = explorer.update(makeFrontier({{target}, {next}, {last}}), kUav, false);
-    ASSERT_EQ(first.action, ExplorerAction::kFly);
-    ASSERT_NEAR((first.target.head<3>() - target).norm(), 0.0, 1e-9) << "the test needs the tour to start there";
-    const ExplorerDecision d = explorer.update(makeFrontier({{next}, {moved}, {last}}), kUav, false);
-    ASSERT_EQ(d.action, ExplorerAction::kFly) << "radius " << radius;
-    EXPECT_EQ(d.reason, ReplanReason::kTargetCovered);
-    EXPECT_NEAR((d.target.head<3>() - (radius > 0.0 ? moved : next)).norm(), 0.0, 1e-9) << "radius " << radius;
-    EXPECT_EQ(explorer.stats().retargets, radius > 0.0 ? 1u : 0u);
-    EXPECT_EQ(explorer.tour().size(), 3u);
-  }
-  ExplorerConfig bad;
-  bad.retarget_radius = -1.0;
-  EXPECT_NE(bad.validate().message().find("retarget_radius"), std::string::npos);
-}
-
-// defer_visible: a new viewpoint that sees fewer ISEs than it joins the tour
-// at the end instead of where it costs the least detour.
-TEST(Explorer, DeferVisibleAppendsViewpointsThatSeeLittle) {
-  WallWorld world(true);
-  const Eigen::Vector3d target(-3, -2, 2.5), next(-3, 0.5, 2.5), last(-3, 3.5, 2.5);
-  const Eigen::Vector3d added(-3, -0.75, 2.5);  // between the target and the next one
-  for (int defer : {0, 2}) {
-    ExplorerConfig config;
-    config.defer_visible = defer;
-    Explorer explorer(config, pathConfig());
-    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-    const ExplorerDecision first = explorer.update(makeFrontier({{target}, {next}, {last}}), kUav, false);
-    ASSERT_EQ(first.action, ExplorerAction::kFly);
-    ASSERT_NEAR((first.target.head<3>() - target).norm(), 0.0, 1e-9) << "the test needs the tour to start there";
-    // Every viewpoint of makeFrontier sees one ISE.
-    explorer.update(makeFrontier({{target}, {next}, {last}, {added}}), kUav, false);
-    ASSERT_EQ(explorer.tour().size(), 4u);
-    const size_t at = defer > 0 ? 3 : 1;
-    EXPECT_NEAR((explorer.tour()[at].head<3>() - added).norm(), 0.0, 1e-9) << "defer_visible " << defer;
-  }
-  ExplorerConfig bad;
-  bad.defer_visible = -1;
-  EXPECT_NE(bad.validate().message().find("defer_visible"), std::string::npos);
-}
-
 TEST(Explorer, ReachedTargetsAdvanceAndRevisitsAreBlacklisted) {
   WallWorld world(true);
   ExplorerConfig config;
@@ -252,50 +199,6 @@ TEST(Explorer, UnreachableViewpointIsBlacklistedAfterMaxFailures) {
   ASSERT_EQ(explorer.blacklist().size(), 1u);
   EXPECT_NEAR((explorer.blacklist()[0] - Eigen::Vector3d(4, -3, 2.5)).norm(), 0.0, 1e-9);
   EXPECT_EQ(explorer.stats().leg_failures, 2u);
-}
-
-// backtrack_distance: when no leg can be planned from where the UAV is, it
-// backs out along the positions it flew, further on each new failure, and
-// hovers once the trail is used up.
-TEST(Explorer, BacktracksAlongTheFlownPathWhenNoLegCanBePlanned) {
-  WallWorld world(false);  // the wall is closed: the target cannot be reached
-  ExplorerConfig config;
-  config.max_failures = 100;
-  config.backtrack_distance = 2.0;
-  PathPlannerConfig path = pathConfig();
-  path.iteration_budget = 300;
-  Explorer explorer(config, path);
-  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  auto at = [](int k) { return Eigen::Vector4d(-4.0, -3.0 + 0.6 * k, 2.5, 0.3); };
-  // Nothing seen yet: the explorer hovers, and keeps the positions.
-  for (int k = 0; k < 5; ++k) ASSERT_EQ(explorer.update(Frontier(), at(k), false).action, ExplorerAction::kHover);
-  const Frontier f = makeFrontier({{{4, -3, 2.5}}});
-  ExplorerDecision d = explorer.update(f, at(5), false);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  ASSERT_EQ(d.path.size(), 5u);
-  for (int i = 0; i < 5; ++i) EXPECT_NEAR((d.path[i] - at(5 - i)).norm(), 0.0, 1e-9) << "vertex " << i;
-  EXPECT_NE(d.message.find("backing out 2 m"), std::string::npos) << d.message;
-  EXPECT_EQ(explorer.stats().backtracks, 1u);
-  // On the way back it does not plan.
-  EXPECT_EQ(explorer.update(f, at(4), false).action, ExplorerAction::kContinue);
-  // At the end it plans again, fails again, and backs out over what is left.
-  d = explorer.update(f, at(1), true);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  ASSERT_EQ(d.path.size(), 2u);
-  EXPECT_NEAR((d.path.back() - at(0)).norm(), 0.0, 1e-9);
-  d = explorer.update(f, at(0), true);
-  EXPECT_EQ(d.action, ExplorerAction::kHover) << d.message;
-  EXPECT_EQ(explorer.stats().backtracks, 2u);
-
-  // Off: the first failure hovers.
-  config.backtrack_distance = 0.0;
-  Explorer plain(config, path);
-  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
-  for (int k = 0; k < 5; ++k) plain.update(Frontier(), at(k), false);
-  EXPECT_EQ(plain.update(f, at(5), false).action, ExplorerAction::kHover);
-  ExplorerConfig bad;
-  bad.backtrack_distance = -1.0;
-  EXPECT_NE(bad.validate().message().find("backtrack_distance"), std::string::npos);
 }
 
 TEST(Explorer, ObstacleOnTheLegGivesANewFreeLeg) {
@@ -419,82 +322,6 @@ TEST(Explorer, TurnLeadTurnsWhileFlyingInsteadOfInPlace) {
   ExplorerConfig bad;
   bad.turn_lead = -0.5;
   EXPECT_NE(bad.validate().message().find("turn_lead"), std::string::npos);
-}
-
-// direct_yaw_length: a leg no longer than it turns from the UAV's yaw to the
-// target's along the way, with no turn to the travel heading first.
-TEST(Explorer, DirectYawLengthTurnsShortLegsStraightToTheTargetYaw) {
-  WallWorld world(true);
-  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
-  f.viewpoints[0].yaw = 2.0;
-  ExplorerConfig config;
-  config.travel_yaw = true;
-  config.turn_distance = 1.5;
-  config.direct_yaw_length = 100.0;
-  Explorer explorer(config, pathConfig());
-  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision d = explorer.update(f, kUav, false);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  ASSERT_GE(d.path.size(), 2u);
-  EXPECT_NEAR(d.path.front().w(), kUav.w(), 1e-9);
-  EXPECT_NEAR(d.path.back().w(), 2.0, 1e-9);
-  // The yaw moves monotonically towards the target's, in proportion to the distance.
-  double length = 0.0;
-  for (size_t i = 1; i < d.path.size(); ++i) length += (d.path[i] - d.path[i - 1]).head<3>().norm();
-  double along = 0.0;
-  const double turn = std::remainder(2.0 - kUav.w(), 2.0 * M_PI);
-  for (size_t i = 1; i < d.path.size(); ++i) {
-    along += (d.path[i] - d.path[i - 1]).head<3>().norm();
-    EXPECT_NEAR(std::remainder(d.path[i].w() - kUav.w() - turn * along / length, 2.0 * M_PI), 0.0, 1e-9) << i;
-  }
-  ExplorerConfig bad;
-  bad.direct_yaw_length = -1.0;
-  EXPECT_NE(bad.validate().message().find("direct_yaw_length"), std::string::npos);
-}
-
-// scan_yaw: points every scan_spacing metres on the travel part swing the yaw
-// to alternate sides of the travel heading; the final turn is unchanged.
-TEST(Explorer, ScanYawSwingsTheYawAroundTheHeadingWhileTravelling) {
-  WallWorld world(true);
-  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
-  f.viewpoints[0].yaw = 2.0;
-  ExplorerConfig config;
-  config.travel_yaw = true;
-  config.turn_distance = 1.5;
-  Explorer straight(config, pathConfig());
-  ASSERT_TRUE(straight.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision s = straight.update(f, kUav, false);
-  ASSERT_EQ(s.action, ExplorerAction::kFly) << s.message;
-  config.scan_yaw = 0.5;
-  config.scan_spacing = 0.5;
-  Explorer explorer(config, pathConfig());
-  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision d = explorer.update(f, kUav, false);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  // Same roadmap seed and map: the same vertices, with swing points between them.
-  ASSERT_GT(d.path.size(), s.path.size());
-  EXPECT_NEAR((d.path.back() - s.path.back()).norm(), 0.0, 1e-9);
-  EXPECT_NEAR((d.path[d.path.size() - 2] - s.path[s.path.size() - 2]).norm(), 0.0, 1e-9);
-  int swings = 0;
-  double last_side = 0.0;
-  for (size_t i = 0; i + 2 < d.path.size(); ++i) {
-    const Eigen::Vector2d step = (d.path[i + 1] - d.path[i]).head<2>();
-    if (step.norm() < 0.2) continue;
-    const double off = std::remainder(d.path[i].w() - std::atan2(step.y(), step.x()), 2.0 * M_PI);
-    if (std::abs(off) < 1e-6) continue;  // an original vertex looks along its segment
-    EXPECT_NEAR(std::abs(off), 0.5, 1e-6) << "vertex " << i;
-    EXPECT_NE(off > 0.0 ? 1.0 : -1.0, last_side) << "vertex " << i;
-    last_side = off > 0.0 ? 1.0 : -1.0;
-    ++swings;
-  }
-  EXPECT_GE(swings, 2);
-  expectFree(world.collision(), d.path);
-  ExplorerConfig bad;
-  bad.scan_yaw = 2.0;
-  EXPECT_NE(bad.validate().message().find("scan_yaw"), std::string::npos);
-  bad.scan_yaw = 0.5;
-  bad.scan_spacing = 0.0;
-  EXPECT_NE(bad.validate().message().find("scan_spacing"), std::string::npos);
 }
 
 // full_on_leg_end: reaching a target recomputes the whole tour from the UAV

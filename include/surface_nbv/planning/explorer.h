@@ -41,11 +41,6 @@ struct ExplorerConfig {
   ClusterGraphConfig graph;
   LinKernighanSolver::Config tsp;
   double match_radius = 1.0;      // m: a tour viewpoint is the same as a frontier one this close
-  // When the current target leaves the frontier (its ISE grew or moved as
-  // the map filled in), the nearest frontier viewpoint within this distance
-  // of it becomes the target instead of the next one in the tour, so the
-  // UAV keeps its direction. 0 = off: the tour's next viewpoint follows.
-  double retarget_radius = 0.0;   // m
   double reach_tolerance = 0.6;   // m: a finished leg this close to its target visited it
   int max_failures = 3;           // unreachable attempts before a place is blacklisted
   int max_visits = 2;             // visits that left a viewpoint in the frontier before blacklisting
@@ -65,24 +60,8 @@ struct ExplorerConfig {
   // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
   // many metres per radian (speed / yaw rate turns at the full yaw rate).
   double turn_lead = 0.0;         // m/rad
-  // travel_yaw only: a leg no longer than this (path length) does not turn to
-  // its travel heading at all; its yaw goes from the UAV's to the target's
-  // along the leg, so short hops between nearby viewpoints do not stop for
-  // a turn in place and then turn back. 0 = every leg looks along its way.
-  double direct_yaw_length = 0.0; // m
-  // travel_yaw only: on the way to the final turn the yaw swings to either
-  // side of the travel heading by scan_yaw, alternating every scan_spacing
-  // metres, so the camera sweeps a wider band than its FOV while it flies
-  // (the swing takes less time than the metres at the reference speed).
-  // 0 = look straight along the way.
-  double scan_yaw = 0.0;          // rad
-  double scan_spacing = 2.0;      // m
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
-  // Local updates: a new viewpoint that sees fewer ISEs than this joins the
-  // tour at its end instead of by cheapest insertion, so the UAV sweeps what
-  // shows much before it comes back for what shows little. 0 = off.
-  int defer_visible = 0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
   // planner's oracle (straight line when free, else the roadmap's path
   // length, +inf when it connects nothing); false, straight lines.
@@ -101,11 +80,6 @@ struct ExplorerConfig {
   // has seen nothing yet (a late first frame), not a finished mission: the
   // explorer hovers through this many such frontiers before it says complete.
   int empty_updates_before_done = 10;
-  // When no leg to any tour viewpoint can be planned from where the UAV is
-  // (a pocket whose way out the map now calls too tight), fly back this far
-  // along the UAV's own flown positions, which it has physically passed, and
-  // plan again from there; further back on each new failure. 0 = hover.
-  double backtrack_distance = 0.0;  // m
 
   // Names the first bad key.
   Status validate() const;
@@ -160,11 +134,9 @@ struct TourArc {
 struct ExplorerStats {
   size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
-  size_t retargets = 0;         // covered targets replaced by a viewpoint near them (retarget_radius)
   size_t tour_viewpoints = 0, clusters = 0;
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
-  size_t backtracks = 0;        // legs back along the flown positions (backtrack_distance)
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -224,12 +196,8 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
-  // A leg back along trail_ (backtrack_distance); false when the trail is used up.
-  bool backtrack(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
-  // Adds scan_yaw's swings to the travel part of an oriented leg.
-  void addYawScan(std::vector<Eigen::Vector4d>* path) const;
 
   ExplorerConfig config_;
   PathPlanner planner_;
@@ -242,10 +210,6 @@ class Explorer {
   std::vector<Eigen::Vector4d> path_;   // current leg
   bool have_target_ = false;
   bool requested_ = false;
-  std::vector<Eigen::Vector3d> trail_;  // flown positions, about half a metre apart
-  bool backtracking_ = false;           // flying a backtrack leg
-  Eigen::Vector3d backtrack_end_ = Eigen::Vector3d::Zero();
-  int backtrack_updates_ = 0;           // updates since it began (a watchdog)
   bool seen_ises_ = false;      // some frontier held an ISE
   int empty_updates_ = 0;       // frontiers without ISEs while !seen_ises_
   std::vector<Place> places_;
