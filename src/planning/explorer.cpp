@@ -308,7 +308,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     const Eigen::Vector4d target = tour_.front();
     if (config_.check_reachable && map_ != nullptr) {
-      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), collision_radius_ + config_.reach_clearance);
+      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), planner_.clearance() + config_.reach_clearance);
       reach_filled_ = true;
       if (!reach_.reachable(target.head<3>())) {
         countFailure(target.head<3>());

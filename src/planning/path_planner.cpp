@@ -288,6 +288,8 @@ std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdg
   return edges;
 }
 
+double PathPlanner::clearance() const { return config_.collision_radius + 0.5 * impl_->resolution; }
+
 PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };

@@ -110,6 +110,37 @@ TEST(PathPlanner, StartOrGoalInCollisionHaveTheirOwnStatus) {
   EXPECT_EQ(r.status, PathStatus::kInvalidInput);
 }
 
+// clearance(): what every accepted state keeps from obstacles, the radius
+// plus half the motion-check step; the explorer's reachability fill uses it.
+TEST(PathPlanner, ClearanceIsTheRadiusPlusHalfTheMotionCheckStep) {
+  const WallWorld world(true);
+  PathPlannerConfig config = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
+  config.validity_resolution = 0.2;
+  PathPlanner planner(config);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  EXPECT_NEAR(planner.clearance(), config.collision_radius + 0.1, 1e-12);
+  // Goals beside the wall: refused while nearer than clearance(), accepted beyond it.
+  int refused_beyond_radius = 0, accepted = 0;
+  for (double x = -3.0; x < -0.3; x += 0.01) {
+    const Eigen::Vector4d goal(x, -3.0, 2.5, 0.0);
+    const double d = world.collision().distance(goal.head<3>());
+    const PathStatus status = planner.plan(kStart, goal).status;
+    if (d >= config.collision_radius && d < planner.clearance() - 1e-6) {
+      EXPECT_EQ(status, PathStatus::kInvalidGoal) << "x " << x << " distance " << d;
+      ++refused_beyond_radius;
+    } else if (d > planner.clearance() + 1e-6 && status != PathStatus::kInvalidGoal) {
+      ++accepted;
+    }
+  }
+  EXPECT_GT(refused_beyond_radius, 0) << "no goal between the radius and the clearance";
+  EXPECT_GT(accepted, 0);
+  PathPlannerConfig fine = config;
+  fine.validity_resolution = 0.0;  // half a collision cell
+  PathPlanner default_step(fine);
+  ASSERT_TRUE(default_step.setMap(&world.collision(), world.bounds()));
+  EXPECT_NEAR(default_step.clearance(), fine.collision_radius + 0.25 * world.collision().cellSize(), 1e-12);
+}
+
 TEST(PathPlanner, NoMapIsInvalidInput) {
   PathPlanner planner;
   EXPECT_EQ(planner.plan(kStart, kGoal).status, PathStatus::kInvalidInput);

@@ -70,11 +70,12 @@ struct ExplorerConfig {
   // space (ReachableSpace, filled once per map version); one that does not
   // counts a failure at once instead of costing the planner its budget.
   bool check_reachable = false;
-  // Added to the collision radius for that fill [m]: cells whose centre is
-  // this much farther from obstacles. The planner itself needs the radius
-  // plus half a motion-check step everywhere along a path, so passages a
-  // fill at the bare radius lets through can cost the roadmap its whole
-  // budget on every attempt (measured: minutes of wall time per decision).
+  // The fill keeps cells whose centre is the planner's clearance (the
+  // collision radius plus half a motion-check step, PathPlanner::clearance)
+  // from obstacles, plus this [m]. A fill at the bare radius let through
+  // passages the planner refuses, and targets behind them cost the roadmap
+  // its whole budget on every attempt: minutes of wall time per decision
+  // and the stalls of docs/planner_experiments.md.
   double reach_clearance = 0.0;
   // A frontier without any ISE before any ISE was ever seen is a map that
   // has seen nothing yet (a late first frame), not a finished mission: the

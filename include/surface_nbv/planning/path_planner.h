@@ -115,6 +115,9 @@ class PathPlanner {
   // bounds. The same bounds keep the roadmap (as mapChanged()); new bounds
   // start a new one. Error on a null map or an empty box.
   Status setMap(const CollisionMap* map, const AlignedBox& bounds);
+  // The clearance every state of a path keeps from obstacles: the collision
+  // radius plus half the motion-check step (set by setMap; the radius before).
+  double clearance() const;
   // Call after the CollisionMap was updated: roadmap validity is re-checked lazily.
   void mapChanged();
   // Drops the roadmap; the next plan() starts from scratch with the seed.
