@@ -174,10 +174,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("turn_lead", &c->explorer.turn_lead);
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
-  m.get("target_window", &c->explorer.target_window);
-  m.get("target_gain_weight", &c->explorer.target_gain_weight);
-  m.get("reorder_legs", &c->explorer.reorder_legs);
-  m.get("front_slack", &c->explorer.front_slack);
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);

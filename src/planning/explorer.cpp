@@ -7,8 +7,6 @@
 #include <unordered_map>
 
 #include "surface_nbv/map/collision_map.h"
-#include "surface_nbv/planning/k_opt_local_search.h"
-#include "surface_nbv/planning/lk_candidates.h"
 #include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
@@ -76,12 +74,6 @@ Status ExplorerConfig::validate() const {
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
-  if (target_window < 1) return Status::Error("target_window expected >= 1");
-  if (reorder_legs < 0) return Status::Error("reorder_legs expected >= 0");
-  if (!(front_slack >= 0.0) || !std::isfinite(front_slack)) return Status::Error("front_slack expected >= 0");
-  if (!(target_gain_weight >= 0.0) || !std::isfinite(target_gain_weight)) {
-    return Status::Error("target_gain_weight expected >= 0");
-  }
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
@@ -133,7 +125,6 @@ void Explorer::reset() {
   places_.clear();
   blacklist_.clear();
   arcs_.clear();
-  legs_since_reorder_ = 0;
   stats_ = ExplorerStats();
 }
 
@@ -260,17 +251,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
       const double cost = (a - x).norm() + (x - b).norm() - (a - b).norm();
       if (cost < best_cost) best_cost = cost, best = p;
     }
-    // front_slack: the earliest position whose detour is within the slack of the cheapest.
-    if (config_.front_slack > 0.0) {
-      for (size_t p = have_target_ ? 1 : 0; p < best; ++p) {
-        const Eigen::Vector3d a = p == 0 ? Eigen::Vector3d(uav.head<3>()) : Eigen::Vector3d(tour_[p - 1].head<3>());
-        const Eigen::Vector3d b = tour_[p].head<3>();
-        if ((a - x).norm() + (x - b).norm() - (a - b).norm() <= best_cost + config_.front_slack) {
-          best = p;
-          break;
-        }
-      }
-    }
     tour_.insert(tour_.begin() + static_cast<long>(best), q);
     ++inserted;
   }
@@ -316,69 +296,8 @@ bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vecto
   return std::isfinite(best);
 }
 
-int Explorer::gainNear(const Eigen::Vector3d& p) const {
-  int gain = 0;
-  double best = config_.match_radius;
-  for (const auto& g : gains_) {
-    const double dist = (g.first - p).norm();
-    if (dist <= best) best = dist, gain = g.second;
-  }
-  return gain;
-}
-
-void Explorer::pickTarget(const Eigen::Vector4d& uav) {
-  const size_t n = std::min(tour_.size(), static_cast<size_t>(config_.target_window));
-  if (n < 2) return;
-  size_t best = 0;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (size_t k = 0; k < n; ++k) {
-    // -log of |C_q|^w exp(-lambda_tc d); a viewpoint no longer matched counts one ISE.
-    const double gain = std::max(1, gainNear(tour_[k].head<3>()));
-    const double cost = config_.graph.lambda_tc * (tour_[k].head<3>() - uav.head<3>()).norm() -
-                        config_.target_gain_weight * std::log(static_cast<double>(gain));
-    if (cost < best_cost) best_cost = cost, best = k;
-  }
-  std::rotate(tour_.begin(), tour_.begin() + static_cast<long>(best), tour_.begin() + static_cast<long>(best) + 1);
-}
-
-void Explorer::reorderTour(const Eigen::Vector4d& uav) {
-  // Nodes: 0 the UAV, k the tour's (k-1)th viewpoint. The UAV and the tour's
-  // last viewpoint are joined by a fixed edge, so a closed tour is a path
-  // between these two ends; the local search starts from the current order
-  // and only shortens it (a fresh solve may reverse the tour's direction).
-  const int n = static_cast<int>(tour_.size()) + 1;
-  if (n < 4) return;
-  CostMatrix costs(n);
-  auto at = [&](int i) { return i == 0 ? Eigen::Vector3d(uav.head<3>()) : Eigen::Vector3d(tour_[i - 1].head<3>()); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) costs.at(i, j) = i == j ? 0.0 : (at(i) - at(j)).norm();
-  costs.at(0, n - 1) = costs.at(n - 1, 0) = 0.0;
-  std::vector<int> fixed(n, -1);
-  fixed[0] = n - 1, fixed[n - 1] = 0;
-  KOptLocalSearch search(costs, nearestCandidates(costs, fixed, CostMatrix::kUnreachable, config_.tsp.max_candidates),
-                         fixed, config_.tsp.max_depth, config_.tsp.or_opt_max_segment);
-  std::vector<int> order(n);
-  for (int i = 0; i < n; ++i) order[i] = i;
-  search.setTour(order);
-  search.activateAll();
-  search.optimize(KOptLocalSearch::Clock::time_point::max());
-  // Read the cycle from the UAV away from the fixed edge.
-  const std::vector<int>& t = search.tour();
-  const int p0 = static_cast<int>(std::find(t.begin(), t.end(), 0) - t.begin());
-  const int step = t[(p0 + 1) % n] == n - 1 ? n - 1 : 1;
-  std::vector<Eigen::Vector4d> ordered;
-  for (int k = 1; k < n; ++k) ordered.push_back(tour_[t[(p0 + k * step) % n] - 1]);
-  tour_ = std::move(ordered);
-  ++stats_.reorders;
-}
-
 void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   const auto t0 = Clock::now();
-  if (config_.reorder_legs > 0 && !have_target_ && ++legs_since_reorder_ >= config_.reorder_legs) {
-    legs_since_reorder_ = 0;
-    reorderTour(uav);
-  }
-  if (config_.target_window > 1 && !have_target_) pickTarget(uav);
   Eigen::Vector4d from = uav;
   std::vector<Eigen::Vector4d> prefix;
   // A start the planner refuses (closer to an obstacle than the radius, or in
@@ -515,11 +434,6 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     return d;
   }
   const Frontier f = plannable(frontier);
-  if (config_.target_window > 1) {
-    gains_.clear();
-    for (size_t i = 0; i < f.viewpoints.size(); ++i)
-      if (wanted(f, i)) gains_.emplace_back(f.viewpoints[i].position, static_cast<int>(f.viewpoints[i].visible.size()));
-  }
   // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
   // blacklisted (unreachable, or visited max_visits times without completing
   // it) has no collision-free configuration that completes it, so it joins C_rem.

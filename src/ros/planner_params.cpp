@@ -57,10 +57,6 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
   r->get("min_visible", &e->min_visible);
-  r->get("target_window", &e->target_window);
-  r->get("target_gain_weight", &e->target_gain_weight);
-  r->get("reorder_legs", &e->reorder_legs);
-  r->get("front_slack", &e->front_slack);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
   r->get("check_reachable", &e->check_reachable);

@@ -4,9 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <limits>
-
 #include "planning_test_worlds.h"
 
 using namespace surface_nbv;
@@ -369,47 +366,6 @@ TEST(Explorer, ViewpointsThatSeeNothingAreLeftOutOfTheTour) {
   g.viewpoints[0].visible.clear();
   d = only.update(g, kUav, false);
   EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
-}
-
-TEST(Explorer, ReorderShortensTheTourBetweenTheUavAndItsLastViewpoint) {
-  WallWorld world(true);
-  // Two interleaved clusters along one line: the cluster tour visits one, then
-  // the other, and zigzags.
-  const Frontier f = makeFrontier({{{-3, -2, 2.5}, {-3, 0, 2.5}, {-3, 2, 2.5}}, {{-3, -1, 2.5}, {-3, 1, 2.5}, {-3, 3, 2.5}}});
-  auto length = [](const Eigen::Vector4d& from, const std::vector<Eigen::Vector4d>& tour) {
-    double sum = 0.0;
-    Eigen::Vector3d p = from.head<3>();
-    for (const Eigen::Vector4d& q : tour) sum += (q.head<3>() - p).norm(), p = q.head<3>();
-    return sum;
-  };
-  Explorer plain(ExplorerConfig(), pathConfig());
-  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
-  ASSERT_EQ(plain.update(f, kUav, false).action, ExplorerAction::kFly);
-  const std::vector<Eigen::Vector4d> before = plain.tour();
-  ExplorerConfig config;
-  config.reorder_legs = 1;
-  Explorer explorer(config, pathConfig());
-  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision d = explorer.update(f, kUav, false);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  EXPECT_EQ(explorer.stats().reorders, 1u);
-  const std::vector<Eigen::Vector4d> after = explorer.tour();
-  ASSERT_EQ(after.size(), before.size());
-  EXPECT_EQ(after.back(), before.back());  // the far end stays
-  EXPECT_EQ(d.target, after.front());
-  // The shortest order between the two ends, by enumeration.
-  std::vector<Eigen::Vector4d> middle(before.begin(), before.end() - 1);
-  std::sort(middle.begin(), middle.end(), [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) { return a.y() < b.y(); });
-  double best = std::numeric_limits<double>::infinity();
-  do {
-    std::vector<Eigen::Vector4d> order = middle;
-    order.push_back(before.back());
-    best = std::min(best, length(kUav, order));
-  } while (std::next_permutation(middle.begin(), middle.end(), [](const Eigen::Vector4d& a, const Eigen::Vector4d& b) {
-    return a.y() < b.y();
-  }));
-  EXPECT_GT(length(kUav, before), best + 1.0) << "the cluster tour should zigzag";
-  EXPECT_NEAR(length(kUav, after), best, 1e-9);
 }
 
 TEST(Explorer, ConfigRefusesBadValues) {

@@ -62,20 +62,6 @@ struct ExplorerConfig {
   double turn_lead = 0.0;         // m/rad
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
-  // The next target is the best of the tour's first target_window viewpoints
-  // (1: the tour's first) by eq. 5's utility read for one viewpoint,
-  // |C_q|^target_gain_weight * exp(-lambda_tc * |q - uav|); it moves to the
-  // front and the others keep their order.
-  int target_window = 1;
-  double target_gain_weight = 1.0;
-  // Every reorder_legs new targets (0: never) the tour is shortened by k-opt
-  // and Or-opt moves from its current order (straight-line distances, tsp's
-  // candidates and depth), its ends (the UAV, the last viewpoint) fixed:
-  // cheapest insertions alone let the order drift from the shortest one.
-  int reorder_legs = 0;
-  // A new viewpoint goes to the earliest tour position whose detour is at
-  // most this much [m] above the cheapest one (0: the cheapest).
-  double front_slack = 0.0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
   // planner's oracle (straight line when free, else the roadmap's path
   // length, +inf when it connects nothing); false, straight lines.
@@ -147,7 +133,7 @@ struct TourArc {
 };
 
 struct ExplorerStats {
-  size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0, reorders = 0;
+  size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
   size_t tour_viewpoints = 0, clusters = 0;
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
@@ -211,12 +197,6 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
-  // target_window: moves the best of the first viewpoints to the tour's front.
-  void pickTarget(const Eigen::Vector4d& uav);
-  // reorder_legs: the tour re-solved as an open path from the UAV.
-  void reorderTour(const Eigen::Vector4d& uav);
-  // |C_q| of the wanted frontier viewpoint nearest p within match_radius (0: none).
-  int gainNear(const Eigen::Vector3d& p) const;
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
 
@@ -235,9 +215,7 @@ class Explorer {
   int empty_updates_ = 0;       // frontiers without ISEs while !seen_ises_
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
-  std::vector<std::pair<Eigen::Vector3d, int>> gains_;  // last frontier: wanted viewpoints, |C_q|
   std::vector<TourArc> arcs_;
-  int legs_since_reorder_ = 0;
   ExplorerStats stats_;
 };
 
