@@ -88,6 +88,9 @@ Status MissionConfig::validate() const {
     return Status::Error("mission/leg_yaw_tolerance expected in (0, pi] rad");
   }
   if (!positive(max_flight_time)) return Status::Error("mission/max_flight_time expected > 0");
+  if (!(max_path_length >= 0.0) || !std::isfinite(max_path_length)) {
+    return Status::Error("mission/max_path_length expected >= 0 m (0: no limit)");
+  }
   if (!(start_free_radius >= 0.0) || start_free_radius > 10.0) {
     return Status::Error("mission/start_free_radius expected in [0, 10] m");
   }
@@ -152,6 +155,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("leg_lookahead", &c->leg_lookahead);
   m.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   m.get("max_flight_time", &c->max_flight_time);
+  m.get("max_path_length", &c->max_path_length);
   m.get("start_free_radius", &c->start_free_radius);
   m.get("start_spin", &c->start_spin);
   m.get("progress_period", &c->progress_period);
@@ -174,6 +178,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("turn_lead", &c->explorer.turn_lead);
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
+  m.get("pool_unknown_below", &c->explorer.pool_unknown_below);
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);

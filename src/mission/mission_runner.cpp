@@ -143,7 +143,8 @@ MissionResult MissionRunner::run() {
   DepthImage depth;
   Eigen::Vector3d last_p = tracker.state().p_W;
   bool spinning = c.start_spin > 0.0;
-  while (tracker.time() < c.max_flight_time) {
+  const auto pathLeft = [&] { return !(c.max_path_length > 0.0) || result.path_length < c.max_path_length; };
+  while (tracker.time() < c.max_flight_time && pathLeft()) {
     // Fly to the next frame time.
     const auto t_track = Clock::now();
     while (tracker.time() + 1e-9 < next_frame) {
@@ -236,7 +237,8 @@ MissionResult MissionRunner::run() {
     }
   }
   if (result.end_reason.empty() && result.status) {
-    result.end_reason = "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached";
+    result.end_reason = pathLeft() ? "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached"
+                                   : "max_path_length: " + std::to_string(c.max_path_length) + " m of path reached";
   }
   result.flight_time = tracker.time();
   result.explorer = explorer.stats();

@@ -74,6 +74,7 @@ Status ExplorerConfig::validate() const {
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
+  if (!(pool_unknown_below >= 0.0) || pool_unknown_below > 1.0) return Status::Error("pool_unknown_below expected in [0, 1]");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
@@ -240,6 +241,10 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   size_t inserted = 0;
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
     if (matched[i] || !wanted(frontier, i)) continue;
+    if (frontier.viewpoints[i].unknown_fraction < config_.pool_unknown_below) {
+      ++stats_.pooled;
+      continue;
+    }
     const Eigen::Vector4d q = configurationOf(frontier.viewpoints[i]);
     const Eigen::Vector3d x = q.head<3>();
     // Position p: before tour_[p]; tour_[0] stays first while it is the target.
@@ -296,6 +301,15 @@ bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vecto
   return std::isfinite(best);
 }
 
+double Explorer::unknownNear(const Eigen::Vector3d& p) const {
+  double fraction = 1.0, best = config_.match_radius;
+  for (const auto& v : unknown_) {
+    const double dist = (v.first - p).norm();
+    if (dist <= best) best = dist, fraction = v.second;
+  }
+  return fraction;
+}
+
 void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   const auto t0 = Clock::now();
   Eigen::Vector4d from = uav;
@@ -304,6 +318,13 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   // unknown space): leave by the shortest straight step to a free point.
   if (map_ != nullptr && !map_->isFree(uav.head<3>(), collision_radius_ + 0.5 * map_->cellSize())) {
     if (nearestFree(uav.head<3>(), 2.0, &from)) prefix.push_back(uav);
+  }
+  // pool_unknown_below: a next target that now faces little unknown space
+  // leaves the tour while others remain.
+  while (config_.pool_unknown_below > 0.0 && !have_target_ && tour_.size() > 1 &&
+         unknownNear(tour_.front().head<3>()) < config_.pool_unknown_below) {
+    tour_.erase(tour_.begin());
+    ++stats_.pooled;
   }
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     const Eigen::Vector4d target = tour_.front();
@@ -434,6 +455,11 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     return d;
   }
   const Frontier f = plannable(frontier);
+  if (config_.pool_unknown_below > 0.0) {
+    unknown_.clear();
+    for (size_t i = 0; i < f.viewpoints.size(); ++i)
+      if (wanted(f, i)) unknown_.emplace_back(f.viewpoints[i].position, f.viewpoints[i].unknown_fraction);
+  }
   // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
   // blacklisted (unreachable, or visited max_visits times without completing
   // it) has no collision-free configuration that completes it, so it joins C_rem.

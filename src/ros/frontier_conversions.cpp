@@ -63,6 +63,7 @@ void toFrontierMsg(const Frontier& frontier, const std_msgs::Header& header, sur
     out.pose.orientation.z = std::sin(0.5 * v.yaw);
     out.visible_ises.assign(v.visible.begin(), v.visible.end());
     out.sources.assign(v.sources.begin(), v.sources.end());
+    out.unknown_fraction = v.unknown_fraction;
     msg->viewpoints.push_back(out);
   }
   msg->clusters.clear();
@@ -141,6 +142,10 @@ Status fromFrontierMsg(const surface_nbv::SurfaceFrontier& msg, Frontier* fronti
       frontier->ises[k].viewpoint = static_cast<int32_t>(i);
     }
     v.sources.assign(in.sources.begin(), in.sources.end());
+    if (!(in.unknown_fraction >= 0.0 && in.unknown_fraction <= 1.0)) {
+      return Status::Error("viewpoint " + std::to_string(i) + " unknown_fraction not in [0, 1]");
+    }
+    v.unknown_fraction = in.unknown_fraction;
   }
   frontier->clusters.resize(msg.clusters.size());
   for (size_t c = 0; c < msg.clusters.size(); ++c) {

@@ -57,6 +57,7 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
   r->get("min_visible", &e->min_visible);
+  r->get("pool_unknown_below", &e->pool_unknown_below);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
   r->get("check_reachable", &e->check_reachable);

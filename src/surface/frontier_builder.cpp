@@ -10,6 +10,7 @@
 namespace surface_nbv {
 namespace {
 
+
 using Clock = std::chrono::steady_clock;
 
 double msBetween(Clock::time_point a, Clock::time_point b) {
@@ -32,6 +33,30 @@ void addApproachSources(const std::vector<Ise>& ises, std::vector<Viewpoint>* vi
 }
 
 }  // namespace
+
+double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera) {
+  constexpr int kColumns = 9, kRows = 6;
+  const VoxelStateGrid& grid = rays.grid();
+  const Transform T_W_C = viewpoint.cameraPose();
+  const double tx = std::tan(0.5 * camera.hfov_deg * M_PI / 180.0), ty = std::tan(0.5 * camera.vfov_deg * M_PI / 180.0);
+  const Eigen::Vector3i last = grid.gridVoxels() - Eigen::Vector3i::Ones();
+  uint64_t entered = 0, unknown = 0, steps = 0;
+  for (int r = 0; r < kRows; ++r)
+    for (int c = 0; c < kColumns; ++c) {
+      const Eigen::Vector3d d_C(tx * (2.0 * (c + 0.5) / kColumns - 1.0), ty * (2.0 * (r + 0.5) / kRows - 1.0), 1.0);
+      const Eigen::Vector3d end = T_W_C * (camera.max_range * d_C);
+      Eigen::Vector3i target = ((end - grid.origin()) / grid.voxelSize()).array().floor().cast<int>();
+      target = target.cwiseMax(Eigen::Vector3i::Zero()).cwiseMin(last);
+      rays.walk(viewpoint.position, target, &steps, [&](size_t i) {
+        const uint8_t state = grid.data()[i];
+        if (state & VoxelStateGrid::kOccupied) return false;
+        ++entered;
+        unknown += (state & VoxelStateGrid::kUnknown) ? 1 : 0;
+        return true;
+      });
+    }
+  return entered > 0 ? static_cast<double>(unknown) / static_cast<double>(entered) : 1.0;
+}
 
 FrontierBuilder::FrontierBuilder(const SurfaceConfig& config)
     : config_(config),
@@ -105,6 +130,11 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
 
   stats.voxel_steps = visibility_.evaluate(rays, out.ises, &out.viewpoints);
   if (stats.approach_poses > 0) addApproachSources(out.ises, &out.viewpoints);
+  if (config_.unknown_fraction) {
+    parallelForChunked(out.viewpoints.size(), config_.threads, 16, [&](size_t i) {
+      out.viewpoints[i].unknown_fraction = unknownFraction(loose, out.viewpoints[i], config_.camera);
+    });
+  }
   const Clock::time_point t4 = Clock::now();
 
   std::vector<std::pair<int, int>> links;

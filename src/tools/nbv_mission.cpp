@@ -4,7 +4,7 @@
 // scene's ground truth and writes the paper's Table 2 columns.
 //
 //   nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S]
-//               [--out DIR] [--threads N] [--max-flight-time S] [--no-plots]
+//               [--out DIR] [--threads N] [--max-flight-time S] [--max-path-length M] [--no-plots]
 //
 // Per trial (DIR/trial_K/): reconstruction.ply, map.tsdf, path.csv (flown
 // poses), events.csv (every frontier update), eval/ (nbv_evaluate's report and
@@ -34,8 +34,8 @@ namespace {
 
 const char* kUsage =
     "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
-    "                   [--threads N] [--max-flight-time S] [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z]\n"
-    "                   [--crop-max X,Y,Z] [--no-plots]\n"
+    "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--scale S] [--offset X,Y,Z]\n"
+    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--no-plots]\n"
     "  --config defaults to config/<scene name>.yaml of the package when it exists.\n";
 
 int fail(const std::string& message) {
@@ -96,7 +96,7 @@ void meanStd(const std::vector<double>& v, double* mean, double* sd) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
-  options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time"});
+  options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length"});
   CliArgs args(options, {"help", "no-plots"});
   if (Status s = args.parse(argc, argv); !s) return fail(s.message());
   if (args.has("help")) {
@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
   int trials = 1, seed = 1;
   const Status parsed[] = {args.getInt("trials", &trials), args.getInt("seed", &seed),
                            args.getInt("threads", &config.threads),
-                           args.getDouble("max-flight-time", &config.max_flight_time)};
+                           args.getDouble("max-flight-time", &config.max_flight_time),
+                           args.getDouble("max-path-length", &config.max_path_length)};
   for (const Status& s : parsed)
     if (!s) return fail(s.message());
   if (trials < 1 || trials > 100 || seed < 0) return fail("--trials expects 1..100 and --seed >= 0");

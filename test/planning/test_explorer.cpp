@@ -368,6 +368,43 @@ TEST(Explorer, ViewpointsThatSeeNothingAreLeftOutOfTheTour) {
   EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
 }
 
+TEST(Explorer, ViewpointsFacingLittleUnknownWaitUntilTheTourRunsOut) {
+  WallWorld world(true);
+  // The near viewpoint faces almost nothing unseen, the far one a lot.
+  Frontier f = makeFrontier({{{-3, -2, 2.5}}, {{-3, 3, 2.5}}});
+  f.viewpoints[0].unknown_fraction = 0.01;
+  f.viewpoints[1].unknown_fraction = 0.5;
+  Explorer plain(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision near = plain.update(f, kUav, false);
+  ASSERT_EQ(near.action, ExplorerAction::kFly);
+  EXPECT_NEAR((near.target.head<3>() - Eigen::Vector3d(-3, -2, 2.5)).norm(), 0.0, 1e-9);
+
+  ExplorerConfig config;
+  config.pool_unknown_below = 0.05;
+  Explorer explorer(config, pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  ExplorerDecision d = explorer.update(f, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly);
+  EXPECT_NEAR((d.target.head<3>() - Eigen::Vector3d(-3, 3, 2.5)).norm(), 0.0, 1e-9);
+  EXPECT_EQ(explorer.tour().size(), 1u);
+  EXPECT_EQ(explorer.stats().pooled, 1u);
+  // A new leftover does not join the tour while the target is still open.
+  Frontier g = makeFrontier({{{-3, -2, 2.5}, {-2, -3.5, 2.5}}, {{-3, 3, 2.5}}});
+  g.viewpoints[0].unknown_fraction = g.viewpoints[1].unknown_fraction = 0.01;
+  g.viewpoints[2].unknown_fraction = 0.5;
+  d = explorer.update(g, kUav, false);
+  EXPECT_EQ(d.action, ExplorerAction::kContinue);
+  EXPECT_EQ(explorer.tour().size(), 1u);
+  // Once the far one is covered the tour runs out: the leftovers are next.
+  Frontier h = makeFrontier({{{-3, -2, 2.5}, {-2, -3.5, 2.5}}});
+  h.viewpoints[0].unknown_fraction = h.viewpoints[1].unknown_fraction = 0.01;
+  d = explorer.update(h, kUav, false);
+  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+  EXPECT_LT(d.target.y(), 0.0);
+  EXPECT_EQ(explorer.stats().full_recomputes, 2u);
+}
+
 TEST(Explorer, ConfigRefusesBadValues) {
   ExplorerConfig c;
   EXPECT_TRUE(c.validate().ok());
@@ -382,6 +419,9 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.min_visible = -1;
   EXPECT_NE(c.validate().message().find("min_visible"), std::string::npos);
+  c = ExplorerConfig();
+  c.pool_unknown_below = 1.5;
+  EXPECT_NE(c.validate().message().find("pool_unknown_below"), std::string::npos);
 }
 
 }  // namespace

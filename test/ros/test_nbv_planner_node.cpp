@@ -57,6 +57,7 @@ FrontierViewpoint viewpoint(double x, double y, double z, double yaw, std::vecto
   v.pose.orientation.w = std::cos(0.5 * yaw);
   v.pose.orientation.z = std::sin(0.5 * yaw);
   v.visible_ises = visible;
+  v.unknown_fraction = 1.0;  // faces unseen space: never held back by pool_unknown_below
   return v;
 }
 

@@ -205,3 +205,43 @@ TEST(FrontierBuilder, RefusesACollisionMapOfAnotherGrid) {
   EXPECT_NE(s.message().find("collision map"), std::string::npos);
   EXPECT_EQ(f.remaining, 7u);
 }
+
+TEST(FrontierBuilder, UnknownFractionIsTheUnseenShareOfWhatAViewpointFaces) {
+  const TsdfMap map = halfScannedSite();  // scanned for x < 8 m, unknown beyond
+  const VoxelStateGrid grid = gridOf(map);
+  const VoxelRayCaster rays(grid, false);
+  const CameraConfig camera;  // 90 x 60 deg, 8 m
+  Viewpoint v;
+  v.position = Eigen::Vector3d(5.0, 4.0, 2.0);
+  v.yaw = 0.0;  // towards +x: 3 m of scanned space, then the unknown half
+  const double forward = unknownFraction(rays, v, camera);
+  v.yaw = M_PI;  // towards -x: scanned space up to the grid's face
+  const double backward = unknownFraction(rays, v, camera);
+  EXPECT_GT(forward, 0.3);
+  EXPECT_LT(forward, 1.0);
+  EXPECT_EQ(backward, 0.0);
+  v.position = Eigen::Vector3d(-5.0, -5.0, 2.0);
+  EXPECT_EQ(unknownFraction(rays, v, camera), 1.0) << "outside the grid: not evaluated";
+
+  // The builder fills it in for every viewpoint, or leaves 1 when told not to.
+  const auto collision = collisionFor(map);
+  for (bool evaluate : {true, false}) {
+    SurfaceConfig config = testSurfaceConfig();
+    config.unknown_fraction = evaluate;
+    FrontierBuilder builder(config);
+    Frontier frontier;
+    ASSERT_TRUE(builder.update(map, *collision, &frontier).ok());
+    ASSERT_FALSE(frontier.viewpoints.empty());
+    double lowest = 1.0;
+    for (const Viewpoint& w : frontier.viewpoints) {
+      EXPECT_GE(w.unknown_fraction, 0.0);
+      EXPECT_LE(w.unknown_fraction, 1.0);
+      lowest = std::min(lowest, w.unknown_fraction);
+    }
+    if (evaluate) {
+      EXPECT_LT(lowest, 1.0);
+    } else {
+      EXPECT_EQ(lowest, 1.0);
+    }
+  }
+}

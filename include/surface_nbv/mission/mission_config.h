@@ -51,6 +51,7 @@ struct MissionConfig {
   double leg_lookahead = 0.0;      // s
   double leg_yaw_tolerance = 0.35; // rad
   double max_flight_time = 5400.0; // the mission stops there [s]
+  double max_path_length = 0.0;    // or when the flown path reaches this [m]; 0: no limit
   double start_free_radius = 3.0;  // the take-off ball is free space [m]
   double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
   double progress_period = 60.0;   // flight seconds between progress lines

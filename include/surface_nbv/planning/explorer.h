@@ -10,7 +10,9 @@
 //                        viewpoint is near any more (their ISEs were
 //                        covered) leave the tour, frontier viewpoints near no
 //                        tour viewpoint (new ISEs) join it by cheapest
-//                        insertion, and the order of the rest is kept,
+//                        insertion, and the order of the rest is kept;
+//                        with pool_unknown_below, viewpoints that face
+//                        little unknown space wait outside the tour,
 //   leg                  a collision-checked LazyPRM* path from the UAV to the
 //                        first tour viewpoint, re-planned when the map puts an
 //                        obstacle on it (checkPath) or the target leaves the tour,
@@ -62,6 +64,11 @@ struct ExplorerConfig {
   double turn_lead = 0.0;         // m/rad
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
+  // While other viewpoints are in the tour, a viewpoint that faces less than
+  // this share of unknown space (Viewpoint::unknown_fraction) does not join
+  // it, and one that becomes the next target leaves it: leftovers wait until
+  // the tour runs out (0: off).
+  double pool_unknown_below = 0.0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
   // planner's oracle (straight line when free, else the roadmap's path
   // length, +inf when it connects nothing); false, straight lines.
@@ -136,6 +143,7 @@ struct ExplorerStats {
   size_t full_recomputes = 0, local_updates = 0, legs = 0, leg_failures = 0;
   size_t targets_reached = 0, targets_covered = 0, paths_blocked = 0;
   size_t tour_viewpoints = 0, clusters = 0;
+  size_t pooled = 0;            // pool_unknown_below: insertions skipped plus targets dropped
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   double tour_cost = 0.0;       // of the last full recomputation
@@ -197,6 +205,8 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
+  // unknown_fraction of the wanted frontier viewpoint nearest p within match_radius (1: none).
+  double unknownNear(const Eigen::Vector3d& p) const;
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
 
@@ -216,6 +226,7 @@ class Explorer {
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
+  std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
   ExplorerStats stats_;
 };
 

@@ -38,6 +38,10 @@ struct Viewpoint {
   std::vector<uint32_t> sources;   // ISEs whose poses merged into this one, ascending
   std::vector<uint32_t> visible;   // C_q: ISEs seen from here, ascending
   int32_t cluster = -1;
+  // Of the voxels rays across the frustum (to max range, each up to the
+  // first occupied voxel) enter, the share that is unknown: how much unseen
+  // space the viewpoint faces. 1 when not evaluated.
+  double unknown_fraction = 1.0;
 
   // T_W_C of the camera's optical frame (z forward, x right, y down).
   Transform cameraPose() const;

@@ -16,9 +16,16 @@
 #include "surface_nbv/surface/viewpoint_generator.h"
 #include "surface_nbv/surface/viewpoint_merger.h"
 #include "surface_nbv/surface/visibility_evaluator.h"
+#include "surface_nbv/surface/voxel_ray_caster.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
+
+// Viewpoint::unknown_fraction: 9 x 6 rays across the camera's frustum from
+// the viewpoint to max range, each walked up to its first occupied voxel
+// (`rays` must not be blocked by unknown voxels); the share of the voxels
+// entered that are unknown. 1 when no ray enters a voxel (e.g. outside the grid).
+double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera);
 
 class FrontierBuilder {
  public:

@@ -28,6 +28,8 @@ struct SurfaceConfig {
   // observes the unknown space in between, so the ISE is not left in C_rem
   // before anyone looked. 0 turns approach poses off.
   double approach_range_fraction = 0.0;
+  // Evaluate Viewpoint::unknown_fraction (54 rays per viewpoint).
+  bool unknown_fraction = true;
   // The ISE of a viewpoint must lie this far inside the vertical FOV edges
   // (the UAV cannot pitch).
   double fov_margin_deg = 2.0;
