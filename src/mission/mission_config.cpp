@@ -179,6 +179,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("pool_unknown_below", &c->explorer.pool_unknown_below);
+  // The rays only serve pool_unknown_below: a mission without it skips them.
+  c->surface.unknown_fraction = c->explorer.pool_unknown_below > 0.0;
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);

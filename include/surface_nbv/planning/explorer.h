@@ -10,9 +10,9 @@
 //                        viewpoint is near any more (their ISEs were
 //                        covered) leave the tour, frontier viewpoints near no
 //                        tour viewpoint (new ISEs) join it by cheapest
-//                        insertion, and the order of the rest is kept;
-//                        with pool_unknown_below, viewpoints that face
-//                        little unknown space wait outside the tour,
+//                        insertion, and the order of the rest is kept
+//                        (with pool_unknown_below, viewpoints that face
+//                        little unknown space wait outside the tour),
 //   leg                  a collision-checked LazyPRM* path from the UAV to the
 //                        first tour viewpoint, re-planned when the map puts an
 //                        obstacle on it (checkPath) or the target leaves the tour,
