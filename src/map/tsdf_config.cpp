@@ -21,10 +21,20 @@ bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy
   return true;
 }
 
+TsdfConfig TsdfConfig::meshLayerConfig() const {
+  TsdfConfig c = *this;
+  c.truncation = mesh_truncation;
+  c.mesh_truncation = 0.0;
+  return c;
+}
+
 Status TsdfConfig::validate() const {
   if (!std::isfinite(voxel_size) || voxel_size <= 0.0) return Status::Error("voxel_size expected > 0");
   if (!std::isfinite(truncation) || truncation < 0.0) return Status::Error("truncation expected >= 0 (0 = 3 voxels)");
   if (truncation > 0.0 && truncation < voxel_size) return Status::Error("truncation expected >= voxel_size");
+  if (!std::isfinite(mesh_truncation) || mesh_truncation < 0.0 || (mesh_truncation > 0.0 && mesh_truncation < voxel_size)) {
+    return Status::Error("mesh_truncation expected 0 (mesh the map itself) or >= voxel_size");
+  }
   if (!std::isfinite(w_th) || w_th <= 0.0f) return Status::Error("w_th expected > 0");
   if (!std::isfinite(mesh_min_weight)) return Status::Error("mesh_min_weight expected finite (< 0 selects w_th)");
   if (!std::isfinite(max_weight) || max_weight < 0.0f || (max_weight > 0.0f && max_weight < w_th)) {

@@ -117,6 +117,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   double mesh_min_weight = c->tsdf.mesh_min_weight;
   nbv.get("mesh_min_weight", &mesh_min_weight);
   c->tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
+  nbv.get("truncation", &c->tsdf.truncation);
+  nbv.get("mesh_truncation", &c->tsdf.mesh_truncation);
   nbv.getVector("bounds_min", &c->tsdf.bounds.min);
   nbv.getVector("bounds_max", &c->tsdf.bounds.max);
   YamlSection cam = nbv.child("camera");

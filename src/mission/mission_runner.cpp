@@ -61,6 +61,8 @@ MissionRunner::~MissionRunner() = default;
 
 const TsdfMap& MissionRunner::map() const { return *map_; }
 
+const TsdfMap& MissionRunner::meshMap() const { return mesh_layer_ ? mesh_layer_->map() : *map_; }
+
 double MissionRunner::observedFraction() const {
   if (probe_.empty() || !map_) return -1.0;
   const float band = static_cast<float>(map_->voxelSize());
@@ -96,6 +98,8 @@ MissionResult MissionRunner::run() {
   // One integrated frame per 1 / frame_rate stands for the camera's frames
   // in that time (rate_hz / frame_rate of them): the same weight per second.
   integrator.setWeightScale(std::max(1.0, c.camera.rate_hz / c.frame_rate));
+  mesh_layer_ = std::make_unique<MeshLayer>(map_.get());
+  mesh_layer_->setWeightScale(integrator.weightScale());
   CameraConfig camera_config = c.camera;
   camera_config.noise_seed = c.camera.noise_seed + c.seed;
   const DepthCamera camera(camera_config);
@@ -108,9 +112,13 @@ MissionResult MissionRunner::run() {
   path.seed = c.seed;
   Explorer explorer(c.explorer, path);
 
-  if (Status s = integrator.markFree(c.start.head<3>(), c.start_free_radius); c.start_free_radius > 0.0 && !s) {
-    result.status = s;
-    return result;
+  if (c.start_free_radius > 0.0) {
+    Status s = integrator.markFree(c.start.head<3>(), c.start_free_radius);
+    if (s) s = mesh_layer_->markFree(c.start.head<3>(), c.start_free_radius);
+    if (!s) {
+      result.status = s;
+      return result;
+    }
   }
   CollisionMap collision(*map_, c.collision);
   if (Status s = explorer.setMap(&collision, tsdf.bounds); !s) {
@@ -162,8 +170,10 @@ MissionResult MissionRunner::run() {
     renderer.render(T_W_C, &depth, result.frames);
     result.times.render += msSince(t_render);
     const auto t_integrate = Clock::now();
-    if (Status s = integrator.integrateDepth(camera, depth, T_W_C); !s) {
-      result.status = Status::Error("integration failed at t = " + std::to_string(tracker.time()) + ": " + s.message());
+    Status fused = integrator.integrateDepth(camera, depth, T_W_C);
+    if (fused) fused = mesh_layer_->integrateDepth(camera, depth, T_W_C);
+    if (!fused) {
+      result.status = Status::Error("integration failed at t = " + std::to_string(tracker.time()) + ": " + fused.message());
       break;
     }
     result.times.integrate += msSince(t_integrate);

@@ -1,6 +1,7 @@
 #include "surface_nbv/ros/mapper_params.h"
 
 #include <cmath>
+#include <limits>
 
 #include <ros/param.h>
 
@@ -36,6 +37,8 @@ void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
   double mesh_min_weight = map->mesh_min_weight;
   shared->get("mesh_min_weight", &mesh_min_weight);
   map->mesh_min_weight = static_cast<float>(mesh_min_weight);
+  shared->get("truncation", &map->truncation);
+  shared->get("mesh_truncation", &map->mesh_truncation);
   shared->get("bounds_min", &map->bounds.min);
   shared->get("bounds_max", &map->bounds.max);
 }
@@ -49,7 +52,9 @@ Status loadSharedMapConfig(const std::string& ns, TsdfConfig* map) {
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);
-  reader.get("truncation", &c->tsdf.truncation);
+  // ~truncation overrides the shared nbv/truncation (read below).
+  double truncation = std::numeric_limits<double>::quiet_NaN();
+  reader.get("truncation", &truncation);
   double max_weight = c->tsdf.max_weight;
   reader.get("max_weight", &max_weight);
   c->tsdf.max_weight = static_cast<float>(max_weight);
@@ -81,6 +86,7 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
   readSharedMapConfig(&shared, &c->tsdf);
+  if (priv.hasParam("truncation")) c->tsdf.truncation = truncation;
   readCameraConfig(&shared, &c->camera);
   shared.checkUnknown("camera");
   if (Status s = shared.status(); !s) return s;

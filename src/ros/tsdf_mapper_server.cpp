@@ -26,6 +26,7 @@ TsdfMapperServer::TsdfMapperServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       config_(config),
       map_(config.tsdf),
       integrator_(&map_),
+      mesh_layer_(&map_),
       mesher_(std::make_unique<MeshExtractor>()),
       tf_listener_(tf_buffer_),
       stats_(nh_, "tsdf/stats", "tsdf_mapper", config.stats_period) {
@@ -66,6 +67,9 @@ TsdfMapperServer::TsdfMapperServer(ros::NodeHandle nh, ros::NodeHandle priv, con
            config_.input.c_str(), t.voxel_size, t.truncationDistance(), t.w_th, t.bounds.min.x(), t.bounds.min.y(),
            t.bounds.min.z(), t.bounds.max.x(), t.bounds.max.y(), t.bounds.max.z(), map_.gridBlocks().x(),
            map_.gridBlocks().y(), map_.gridBlocks().z(), toString(t.invalid_pixels), t.threads);
+  if (mesh_layer_.separate()) {
+    ROS_INFO("tsdf_mapper: the mesh comes from a second TSDF with truncation %.3f m", t.mesh_truncation);
+  }
 }
 
 void TsdfMapperServer::drop(const std::string& reason, const std::string& detail) {
@@ -175,7 +179,9 @@ void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
     // The space the UAV occupies at the first frame is free (closer than min range, unseen).
     start_cleared_ = true;
     size_t n = 0;
-    if (Status s = integrator_.markFree(T_W_S.translation(), config_.start_free_radius, &n); !s) {
+    Status s = integrator_.markFree(T_W_S.translation(), config_.start_free_radius, &n);
+    if (s) s = mesh_layer_.markFree(T_W_S.translation(), config_.start_free_radius);
+    if (!s) {
       ROS_WARN("tsdf_mapper: start_free_radius: %s", s.message().c_str());
     } else {
       ROS_INFO("tsdf_mapper: %zu unknown voxels within %.1f m of the first sensor pose marked free", n,
@@ -187,6 +193,12 @@ void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
   const Status status = f.camera ? integrator_.integrateDepth(*f.camera, f.depth, T_W_S, &s)
                                  : integrator_.integratePoints(f.points, T_W_S, config_.camera.max_range, &s);
   if (!status) return drop("integration", status.message());
+  const Status layer = f.camera ? mesh_layer_.integrateDepth(*f.camera, f.depth, T_W_S)
+                                : mesh_layer_.integratePoints(f.points, T_W_S, config_.camera.max_range);
+  if (!layer) {
+    stats_.count("mesh_layer_failed");
+    ROS_WARN_THROTTLE(10.0, "tsdf_mapper: mesh layer: %s", layer.message().c_str());
+  }
   stats_.recordMs(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   stats_.count("frames_integrated");
   stats_.count("invalid_pixels", s.invalid_pixels);
@@ -225,7 +237,7 @@ void TsdfMapperServer::publishUpdate() {
 void TsdfMapperServer::publishMesh() {
   if (mesh_pub_.getNumSubscribers() == 0 || map_.changeCounter() == meshed_stamp_) return;
   meshed_stamp_ = map_.changeCounter();
-  mesher_->update(map_);
+  mesher_->update(mesh_layer_.map());
   visualization_msgs::Marker marker;
   std_msgs::Header header;
   header.stamp = newest_stamp_;
@@ -260,6 +272,7 @@ bool TsdfMapperServer::loadMap(surface_nbv::FilePath::Request& req, surface_nbv:
   if (!s) return res.code = 1, res.message = s.message(), true;
   s = surface_nbv::loadMap(path, &map_);
   if (s) {
+    if (Status l = mesh_layer_.reload(path); !l) ROS_WARN("tsdf_mapper: mesh layer: %s", l.message().c_str());
     mesher_ = std::make_unique<MeshExtractor>();
     meshed_stamp_ = 0;
     snapshot_requested_ = true;
@@ -273,7 +286,7 @@ bool TsdfMapperServer::exportMesh(surface_nbv::FilePath::Request& req, surface_n
   std::string path;
   Status s = resolveFileName(config_.map_directory, req.path, false, &path);
   if (!s) return res.code = 1, res.message = s.message(), true;
-  mesher_->update(map_);
+  mesher_->update(mesh_layer_.map());
   meshed_stamp_ = map_.changeCounter();
   s = mesher_->exportMesh(path);
   res.code = s ? 0 : 2;
@@ -320,6 +333,7 @@ void TsdfMapperServer::resumeFromAutosave() {
       stats_.count("resume_refused");
       continue;
     }
+    if (Status l = mesh_layer_.reload(path); !l) ROS_WARN("tsdf_mapper: mesh layer: %s", l.message().c_str());
     mesher_ = std::make_unique<MeshExtractor>();
     meshed_stamp_ = 0;
     snapshot_requested_ = true;

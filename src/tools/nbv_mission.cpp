@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
     const MissionResult r = runner.run();
     if (!r.status) return fail("trial " + std::to_string(k) + ": " + r.status.message());
     MeshExtractor mesher;
-    mesher.update(runner.map());
+    mesher.update(runner.meshMap());
     const TriangleMesh reconstruction = mesher.mesh();
     if (!reconstruction.empty()) {
       if (Status s = saveMesh(reconstruction, dir + "/reconstruction.ply"); !s) return fail(s.message());

@@ -55,6 +55,19 @@ TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   EXPECT_NE(c.validate().message().find("mission/start"), std::string::npos);
 }
 
+TEST(MissionConfig, ReadsTheTruncationDistanceAndRefusesOneBelowAVoxel) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());
+  EXPECT_DOUBLE_EQ(c.tsdf.truncationDistance(), 3.0 * c.tsdf.voxel_size);  // no key: 3 voxels
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("trunc.yaml", "nbv:\n  voxel_size: 0.3\n  truncation: 0.6\n"), &c).ok());
+  EXPECT_DOUBLE_EQ(c.tsdf.truncationDistance(), 0.6);
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("thin.yaml", "nbv:\n  voxel_size: 0.3\n  truncation: 0.1\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("truncation"), std::string::npos) << c.validate().message();
+}
+
 // A whole mission on the 4 m box: it must end by itself (no ISE of C_ins
 // left) with the box's surface observed, and repeat exactly.
 TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
@@ -99,10 +112,27 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   EXPECT_GT(r.path_length, 5.0);
   EXPECT_LT(r.flight_time, c.max_flight_time);
 
-  MissionRunner again(c, *scene);
+  EXPECT_EQ(&runner.meshMap(), &runner.map());  // no mesh_truncation: the map itself
+
+  // The repeat also fuses a mesh layer with a shorter truncation: the flight
+  // must not change (planning never reads it), and its mesh covers the box.
+  MissionConfig layered = c;
+  layered.tsdf.mesh_truncation = 2.0 * c.tsdf.voxel_size;
+  MissionRunner again(layered, *scene);
   const MissionResult r2 = again.run();
   ASSERT_EQ(r2.flown.size(), r.flown.size());
   for (size_t i = 0; i < r.flown.size(); ++i) ASSERT_EQ(r2.flown[i], r.flown[i]) << "frame " << i;
+  ASSERT_NE(&again.meshMap(), &again.map());
+  EXPECT_DOUBLE_EQ(again.meshMap().config().truncationDistance(), 2.0 * c.tsdf.voxel_size);
+  EXPECT_DOUBLE_EQ(again.map().config().truncationDistance(), 3.0 * c.tsdf.voxel_size);
+  MeshExtractor layer_mesher;
+  layer_mesher.update(again.meshMap());
+  EvalResult e2;
+  ASSERT_TRUE(Evaluator(eval).evaluate(mesh, layer_mesher.mesh(), &e2).ok());
+  std::printf("box mission, mesh layer: coverage %.2f %%, RMSE %.2f cm\n", 100.0 * e2.coverage.coverage(),
+              100.0 * e2.error_stats.rmse);
+  EXPECT_GT(e2.coverage.coverage(), 0.95);
+  EXPECT_LT(e2.error_stats.rmse, c.tsdf.voxel_size);
 }
 
 }  // namespace

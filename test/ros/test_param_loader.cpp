@@ -145,6 +145,22 @@ TEST(ParamLoader, MapperReadsSharedMapSettings) {
   EXPECT_EQ(config.tsdf.invalid_pixels, InvalidPixelPolicy::kClearToMaxRange);
 }
 
+TEST(ParamLoader, MapperTakesTheSharedTruncationUnlessItsOwnIsSet) {
+  const std::string shared = "/trunc_case/nbv";
+  ros::param::set(shared + "/voxel_size", 0.3);
+  ros::param::set(shared + "/truncation", 0.6);
+  ros::param::set("/trunc_case/a/shared_namespace", shared);
+  ros::param::set("/trunc_case/b/shared_namespace", shared);
+  ros::param::set("/trunc_case/b/truncation", 0.45);
+  MapperConfig a, b;
+  Status s = loadMapperParams(ros::NodeHandle("/trunc_case/a"), &a);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(a.tsdf.truncationDistance(), 0.6);
+  s = loadMapperParams(ros::NodeHandle("/trunc_case/b"), &b);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(b.tsdf.truncationDistance(), 0.45);
+}
+
 TEST(ParamLoader, MapperRefusesBadValues) {
   struct Case {
     std::string key;
@@ -158,6 +174,8 @@ TEST(ParamLoader, MapperRefusesBadValues) {
       {"priv:max_blocks", XmlRpc::XmlRpcValue(0), "max_blocks"},
       {"priv:trunc", XmlRpc::XmlRpcValue(0.3), "trunc "},
       {"shared:voxel_size", XmlRpc::XmlRpcValue(-0.3), "voxel_size"},
+      {"shared:truncation", XmlRpc::XmlRpcValue(0.01), "truncation"},
+      {"priv:truncation", XmlRpc::XmlRpcValue(std::string("thin")), "truncation"},
       {"shared:bounds_min", XmlRpc::XmlRpcValue(3.0), "bounds_min"},
   };
   int n = 0;

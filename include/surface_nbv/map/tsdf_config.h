@@ -26,6 +26,9 @@ bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy
 struct TsdfConfig {
   double voxel_size = 0.3;        // rho_v
   double truncation = 0.0;        // 0 selects 3 voxels
+  // Truncation of the mesh layer, a second TSDF fused from the same frames
+  // that the reconstruction mesh comes from (mesh_layer.h); 0 meshes this map.
+  double mesh_truncation = 0.0;
   float w_th = 0.3f;              // W_th: known iff w >= w_th
   float max_weight = 0.0f;        // cap on w; 0 = no cap
   // Weight a voxel needs to be meshed (Marching Cubes corners): < 0 uses w_th
@@ -38,6 +41,10 @@ struct TsdfConfig {
   int threads = 1;                // integration threads
 
   double truncationDistance() const { return truncation > 0.0 ? truncation : 3.0 * voxel_size; }
+  // Whether mesh_truncation asks for a mesh layer of its own.
+  bool hasMeshLayer() const { return mesh_truncation > 0.0 && mesh_truncation != truncationDistance(); }
+  // This config with truncation = mesh_truncation and no mesh layer of its own.
+  TsdfConfig meshLayerConfig() const;
   // Names the first bad key, e.g. "voxel_size expected > 0".
   Status validate() const;
 };

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/sim/raycast_scene.h"
@@ -73,6 +74,9 @@ class MissionRunner {
   MissionResult run();
   // The map after run().
   const TsdfMap& map() const;
+  // The map the reconstruction is meshed from after run(): the mesh layer
+  // (TsdfConfig::mesh_truncation, mesh_layer.h), else map().
+  const TsdfMap& meshMap() const;
 
  private:
   double observedFraction() const;
@@ -80,6 +84,7 @@ class MissionRunner {
   MissionConfig config_;
   const RaycastScene& scene_;
   std::unique_ptr<TsdfMap> map_;
+  std::unique_ptr<MeshLayer> mesh_layer_;
   std::vector<Eigen::Vector3d> probe_;
   std::function<void(const MissionEvent&)> progress_;
 };

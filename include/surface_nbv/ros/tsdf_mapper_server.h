@@ -25,6 +25,7 @@
 
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
@@ -78,6 +79,7 @@ class TsdfMapperServer {
   MapperConfig config_;
   TsdfMap map_;
   TsdfIntegrator integrator_;
+  MeshLayer mesh_layer_;  // what tsdf/mesh and export_mesh mesh (nbv/mesh_truncation)
   std::unique_ptr<MeshExtractor> mesher_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;

@@ -1,0 +1,40 @@
+#include "surface_nbv/map/mesh_layer.h"
+
+#include "surface_nbv/map/map_io.h"
+
+namespace surface_nbv {
+
+MeshLayer::MeshLayer(const TsdfMap* planning) : planning_(planning) {
+  const TsdfConfig& c = planning->config();
+  if (!c.hasMeshLayer()) return;
+  map_ = std::make_unique<TsdfMap>(c.meshLayerConfig());
+  integrator_ = std::make_unique<TsdfIntegrator>(map_.get());
+}
+
+Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
+  return integrator_ ? integrator_->integrateDepth(camera, depth, T_W_C) : Status::Ok();
+}
+
+Status MeshLayer::integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S,
+                                  double max_range) {
+  return integrator_ ? integrator_->integratePoints(points_S, T_W_S, max_range) : Status::Ok();
+}
+
+Status MeshLayer::markFree(const Eigen::Vector3d& center, double radius) {
+  return integrator_ ? integrator_->markFree(center, radius) : Status::Ok();
+}
+
+void MeshLayer::setWeightScale(double scale) {
+  if (integrator_) integrator_->setWeightScale(scale);
+}
+
+Status MeshLayer::reload(const std::string& path) {
+  if (!map_) return Status::Ok();
+  auto fresh = std::make_unique<TsdfMap>(map_->config());
+  if (Status s = loadMap(path, fresh.get()); !s) return s;
+  map_ = std::move(fresh);
+  integrator_ = std::make_unique<TsdfIntegrator>(map_.get());
+  return Status::Ok();
+}
+
+}  // namespace surface_nbv

@@ -1,0 +1,144 @@
+// The mesh layer: a second TSDF with its own truncation, fed the same frames.
+#include "surface_nbv/map/mesh_layer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "surface_nbv/map/map_io.h"
+#include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/sim/depth_renderer.h"
+#include "surface_nbv/sim/mesh_builder.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+// Optical frame looking along world +x (dir = 1) or -x (dir = -1).
+Transform lookingAlongX(const Eigen::Vector3d& position, double dir) {
+  Transform T = Transform::Identity();
+  T.linear().col(0) = Eigen::Vector3d(0, -dir, 0);
+  T.linear().col(1) = Eigen::Vector3d(0, 0, -1);
+  T.linear().col(2) = Eigen::Vector3d(dir, 0, 0);
+  T.translation() = position;
+  return T;
+}
+
+constexpr double kFront = 5.0, kBack = 5.2;  // a 0.2 m thick wall across x
+
+TsdfConfig thinWallConfig() {
+  TsdfConfig c;
+  c.voxel_size = 0.1;  // default truncation: 3 voxels, 0.3 m, more than the wall is thick
+  c.bounds = AlignedBox(Eigen::Vector3d(0, -2, -2), Eigen::Vector3d(10.4, 2, 2));
+  return c;
+}
+
+// Mean distance from the mesh vertices in the middle of the wall to its nearest face.
+double wallError(const TriangleMesh& mesh, size_t* vertices) {
+  double sum = 0.0;
+  *vertices = 0;
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    if (std::abs(v.y()) > 1.0 || std::abs(v.z()) > 1.0) continue;
+    sum += std::min(std::abs(v.x() - kFront), std::abs(v.x() - kBack));
+    ++*vertices;
+  }
+  return *vertices > 0 ? sum / *vertices : INFINITY;
+}
+
+}  // namespace
+
+TEST(MeshLayer, WithoutMeshTruncationItIsThePlanningMap) {
+  TsdfMap planning(thinWallConfig());
+  MeshLayer layer(&planning);
+  EXPECT_FALSE(layer.separate());
+  EXPECT_EQ(&layer.map(), &planning);
+  EXPECT_TRUE(layer.markFree(Eigen::Vector3d(1, 0, 0), 0.5).ok());  // nothing to do
+  EXPECT_EQ(planning.numBlocks(), 0u);
+  // mesh_truncation equal to the map's own truncation needs no second map either.
+  TsdfConfig same = thinWallConfig();
+  same.mesh_truncation = same.truncationDistance();
+  TsdfMap planning_same(same);
+  EXPECT_FALSE(MeshLayer(&planning_same).separate());
+}
+
+TEST(MeshLayer, ConfigRefusesAMeshTruncationBelowAVoxel) {
+  TsdfConfig c = thinWallConfig();
+  for (double bad : {0.05, -0.2, std::nan("")}) {
+    c.mesh_truncation = bad;
+    EXPECT_NE(c.validate().message().find("mesh_truncation"), std::string::npos) << bad;
+  }
+  c.mesh_truncation = 0.2;
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  const TsdfConfig m = c.meshLayerConfig();
+  EXPECT_DOUBLE_EQ(m.truncationDistance(), 0.2);
+  EXPECT_FALSE(m.hasMeshLayer());
+}
+
+// A wall thinner than the truncation, seen from both sides: the planning
+// map's negative band from each side reaches through to the other face and
+// moves both; the layer with 2 voxels keeps the faces where they are.
+TEST(MeshLayer, ShorterTruncationKeepsAThinWallsFacesInPlace) {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 100.0, 100.0));
+  const TriangleMesh mesh = b.take();
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  CameraConfig cam;
+  cam.width = 160;
+  cam.height = 120;
+  const DepthCamera camera(cam);
+  const DepthRenderer renderer(*scene, camera, 1);
+
+  TsdfConfig config = thinWallConfig();
+  config.mesh_truncation = 0.2;
+  TsdfMap planning(config);
+  TsdfIntegrator integrator(&planning);
+  MeshLayer layer(&planning);
+  ASSERT_TRUE(layer.separate());
+  DepthImage depth;
+  for (int k = 0; k < 4; ++k) {  // alternate sides, several distances
+    for (double dir : {1.0, -1.0}) {
+      const double x = dir > 0 ? 2.0 + 0.3 * k : 8.2 - 0.3 * k;
+      const Transform T = lookingAlongX(Eigen::Vector3d(x, 0.05 * k, 0.0), dir);
+      renderer.render(T, &depth);
+      ASSERT_TRUE(integrator.integrateDepth(camera, depth, T).ok());
+      ASSERT_TRUE(layer.integrateDepth(camera, depth, T).ok());
+    }
+  }
+  MeshExtractor planning_mesh, layer_mesh;
+  planning_mesh.update(planning);
+  layer_mesh.update(layer.map());
+  size_t n_planning = 0, n_layer = 0;
+  const double e_planning = wallError(planning_mesh.mesh(), &n_planning);
+  const double e_layer = wallError(layer_mesh.mesh(), &n_layer);
+  std::printf("thin wall: mean vertex error %.4f m over %zu vertices (truncation 0.3), %.4f m over %zu (0.2)\n",
+              e_planning, n_planning, e_layer, n_layer);
+  ASSERT_GT(n_layer, 100u);
+  EXPECT_LT(e_layer, 0.02);
+  EXPECT_LT(e_layer, 0.5 * e_planning);
+}
+
+TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
+  TsdfConfig config = thinWallConfig();
+  config.mesh_truncation = 0.2;
+  TsdfMap planning(config);
+  TsdfIntegrator integrator(&planning);
+  ASSERT_TRUE(integrator.markFree(Eigen::Vector3d(3, 0, 0), 0.8).ok());
+  const std::string path = (std::filesystem::temp_directory_path() / "mesh_layer_reload.tsdf").string();
+  ASSERT_TRUE(saveMap(planning, path).ok());
+  MeshLayer layer(&planning);
+  ASSERT_TRUE(layer.markFree(Eigen::Vector3d(7, 0, 0), 0.8).ok());  // something else than the file
+  ASSERT_TRUE(layer.reload(path).ok());
+  EXPECT_EQ(layer.map().numBlocks(), planning.numBlocks());
+  Eigen::Vector3i freed, other;
+  ASSERT_TRUE(planning.voxelIndex(Eigen::Vector3d(3, 0, 0), &freed));
+  ASSERT_TRUE(planning.voxelIndex(Eigen::Vector3d(7, 0, 0), &other));
+  EXPECT_EQ(layer.map().state(freed), VoxelState::kFree);
+  EXPECT_EQ(layer.map().state(other), VoxelState::kUnknown);  // the layer's own change is gone
+  EXPECT_DOUBLE_EQ(layer.map().config().truncationDistance(), 0.2);
+  EXPECT_FALSE(layer.reload("/nonexistent/map.tsdf").ok());
+  EXPECT_EQ(layer.map().numBlocks(), planning.numBlocks());  // a refused file changes nothing
+  std::filesystem::remove(path);
+}
