@@ -205,4 +205,14 @@ std::string defaultConfigFile(const std::string& package_dir, const std::string&
   return std::filesystem::exists(candidate) ? candidate : std::string();
 }
 
+EvalConfig missionEvalConfig(const MissionConfig& c) {
+  EvalConfig e;
+  e.voxel_size = c.tsdf.voxel_size;
+  e.min_range = c.camera.min_range;
+  e.max_range = c.camera.max_range;
+  e.collision_radius = c.path.collision_radius;
+  e.threads = c.threads;
+  return e;
+}
+
 }  // namespace surface_nbv

@@ -21,13 +21,6 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-Transform bodyPose(const Eigen::Vector3d& p, double yaw) {
-  Transform T = Transform::Identity();
-  T.translation() = p;
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  return T;
-}
-
 Trajectory legTrajectory(const std::vector<Eigen::Vector4d>& path, const UavState& state, double t0,
                          double speed, double yaw_rate) {
   std::vector<Waypoint> waypoints;
@@ -165,7 +158,7 @@ MissionResult MissionRunner::run() {
     const UavState& state = tracker.state();
     const Eigen::Vector4d uav(state.p_W.x(), state.p_W.y(), state.p_W.z(), state.yaw);
     // Sense.
-    const Transform T_W_C = bodyPose(state.p_W, state.yaw) * T_B_C;
+    const Transform T_W_C = levelBodyPose(state.p_W, state.yaw) * T_B_C;
     const auto t_render = Clock::now();
     renderer.render(T_W_C, &depth, result.frames);
     result.times.render += msSince(t_render);

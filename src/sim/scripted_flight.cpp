@@ -90,8 +90,12 @@ Transform ScriptedFlight::poseAtDistance(double s) const {
   } else {
     p = seg.start + f * (seg.end - seg.start);
   }
+  return levelBodyPose(p, yaw);
+}
+
+Transform levelBodyPose(const Eigen::Vector3d& p_W, double yaw) {
   Transform T_W_B = Transform::Identity();
-  T_W_B.translation() = p;
+  T_W_B.translation() = p_W;
   T_W_B.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   return T_W_B;
 }

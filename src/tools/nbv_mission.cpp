@@ -139,12 +139,7 @@ int main(int argc, char** argv) {
   std::vector<Eigen::Vector3d> probe;
   for (const Eigen::Vector3f& p : probe_cloud.points) probe.push_back(p.cast<double>());
 
-  EvalConfig eval_config;
-  eval_config.voxel_size = config.tsdf.voxel_size;
-  eval_config.min_range = config.camera.min_range;
-  eval_config.max_range = config.camera.max_range;
-  eval_config.collision_radius = config.path.collision_radius;
-  eval_config.threads = config.threads;
+  const EvalConfig eval_config = missionEvalConfig(config);
   std::vector<TrialRow> rows;
   for (int k = 0; k < trials; ++k) {
     MissionConfig trial_config = config;

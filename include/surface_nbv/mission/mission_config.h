@@ -14,6 +14,7 @@
 #include <string>
 
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
@@ -71,5 +72,10 @@ Status loadMissionConfig(const std::string& file, MissionConfig* config);
 // of the package when it exists (`package_dir` is the package's source
 // directory), else the defaults with the scene set.
 std::string defaultConfigFile(const std::string& package_dir, const std::string& scene);
+
+// The evaluation a mission's reconstruction is reported with (nbv_mission,
+// nbv_refuse): e_max from the voxel size, the camera's depth range and the
+// planner's collision radius for the visibility pruning.
+EvalConfig missionEvalConfig(const MissionConfig& c);
 
 }  // namespace surface_nbv

@@ -53,4 +53,7 @@ class ScriptedFlight {
 // mount at `offset` in base_link.
 Transform opticalInBody(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero());
 
+// T_W_B of a level base_link at p_W turned by yaw about world z.
+Transform levelBodyPose(const Eigen::Vector3d& p_W, double yaw);
+
 }  // namespace surface_nbv

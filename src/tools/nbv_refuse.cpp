@@ -1,0 +1,274 @@
+// nbv_refuse: re-fuses a recorded flight into a fresh TSDF with the
+// parameters of a mission YAML (optionally overridden), meshes it and
+// evaluates the mesh against the scene's ground truth, so that fusion and
+// meshing parameters can be compared on exactly the same flight (a flown
+// mission changes chaotically with any change of the map).
+//
+//   nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]
+//              [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]
+//
+// PATH.csv is nbv_mission's trial_K/path.csv: header t_s,x_m,y_m,z_m,yaw_rad,
+// one base_link pose per integrated depth frame. Every frame is fused as
+// MissionRunner::run() fuses it (same weight scale, same mesh layer, same
+// take-off free ball, same camera noise seed for --seed S), so with the
+// trial's config and seed the result is that trial's reconstruction.
+// Writes DIR/reconstruction.ply, DIR/eval/ (nbv_evaluate's report) and
+// DIR/refuse.json (inputs, effective parameters and results). Exit code 2 on
+// any bad input.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#include "surface_nbv/eval/evaluator.h"
+#include "surface_nbv/eval/report_writer.h"
+#include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/map/mesh_layer.h"
+#include "surface_nbv/map/tsdf_integrator.h"
+#include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/sim/depth_renderer.h"
+#include "surface_nbv/sim/mesh_io.h"
+#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/util/cli_args.h"
+#include "surface_nbv/util/json_writer.h"
+
+using namespace surface_nbv;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const char* kUsage =
+    "usage: nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]\n"
+    "                  [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]\n"
+    "                  [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
+    "  Re-fuses the poses of PATH.csv (nbv_mission's trial_K/path.csv) with the config's TSDF parameters,\n"
+    "  meshes and evaluates the result. --config defaults to config/<scene name>.yaml of the package when it\n"
+    "  exists; --seed is the mission seed of the trial (camera noise seed = camera.noise_seed + S, default 1);\n"
+    "  --out defaults to output/refuse_<scene name>.\n";
+
+const char* kHeader = "t_s,x_m,y_m,z_m,yaw_rad";
+
+int fail(const std::string& message) {
+  std::cerr << "nbv_refuse: " << message << "\n";
+  return 2;
+}
+
+// One row of path.csv: a base_link pose in the world frame.
+struct PathRow {
+  size_t line = 0;  // 1-based line number in the file
+  double t = 0.0;
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();
+  double yaw = 0.0;
+};
+
+std::string trim(const std::string& s) {
+  const size_t b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const size_t e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+// Reads nbv_mission's path.csv. Error naming the file and line on a missing
+// or unreadable file, a wrong header, a row without exactly five finite
+// numbers, or no row at all. Blank lines at the end of the file are ignored.
+Status readPath(const std::string& file, std::vector<PathRow>* rows) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return Status::Error("path file '" + file + "' does not exist");
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    return Status::Error("path file '" + file + "' is not a regular file");
+  }
+  std::ifstream in(file);
+  if (!in) return Status::Error("cannot open path file '" + file + "'");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(trim(line));
+  if (in.bad()) return Status::Error("cannot read path file '" + file + "'");
+  while (!lines.empty() && lines.back().empty()) lines.pop_back();
+  if (lines.empty()) return Status::Error(file + ": empty file, expected the header '" + kHeader + "' and poses");
+  if (lines[0] != kHeader) {
+    return Status::Error(file + ":1: expected the header '" + std::string(kHeader) + "', got '" + lines[0] + "'");
+  }
+  static const char* const kColumns[] = {"t_s", "x_m", "y_m", "z_m", "yaw_rad"};
+  rows->clear();
+  for (size_t i = 1; i < lines.size(); ++i) {
+    const std::string where = file + ":" + std::to_string(i + 1) + ": ";
+    std::vector<std::string> fields;
+    std::stringstream ss(lines[i]);
+    for (std::string field; std::getline(ss, field, ',');) fields.push_back(trim(field));
+    if (!lines[i].empty() && lines[i].back() == ',') fields.push_back("");
+    if (fields.size() != 5) {
+      return Status::Error(where + "expected 5 comma-separated numbers (" + kHeader + "), got " +
+                           std::to_string(fields.size()) + " field(s)");
+    }
+    double v[5];
+    for (int k = 0; k < 5; ++k) {
+      const std::string& text = fields[k];
+      char* end = nullptr;
+      v[k] = text.empty() ? 0.0 : std::strtod(text.c_str(), &end);
+      if (text.empty() || end != text.c_str() + text.size()) {
+        return Status::Error(where + kColumns[k] + " '" + text + "' is not a number");
+      }
+      if (!std::isfinite(v[k])) return Status::Error(where + kColumns[k] + " '" + text + "' is not finite");
+    }
+    PathRow row;
+    row.line = i + 1;
+    row.t = v[0];
+    row.p_W = Eigen::Vector3d(v[1], v[2], v[3]);
+    row.yaw = v[4];
+    rows->push_back(row);
+  }
+  if (rows->empty()) return Status::Error(file + ": no poses after the header");
+  return Status::Ok();
+}
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const auto wall0 = Clock::now();
+  std::vector<std::string> options = sceneOptionNames();
+  options.insert(options.end(),
+                 {"path", "config", "truncation", "mesh-truncation", "mesh-min-weight", "seed", "threads", "out"});
+  CliArgs args(options, {"help"});
+  if (Status s = args.parse(argc, argv); !s) return fail(s.message());
+  if (args.has("help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
+  if (!args.has("path")) return fail("--path PATH.csv is required (nbv_mission's trial_K/path.csv)");
+  const std::string path_file = args.get("path", "");
+
+  MissionConfig config;
+  const std::string scene_arg = args.get("scene", "plant");
+  const std::string config_file = args.get("config", defaultConfigFile(NBV_SOURCE_DIR, scene_arg));
+  if (!config_file.empty()) {
+    if (Status s = loadMissionConfig(config_file, &config); !s) return fail(s.message());
+  }
+  if (Status s = sceneConfigFromArgs(args, &config.scene); !s) return fail(s.message());
+  int seed = 1;
+  double mesh_min_weight = config.tsdf.mesh_min_weight;
+  const Status parsed[] = {args.getDouble("truncation", &config.tsdf.truncation),
+                           args.getDouble("mesh-truncation", &config.tsdf.mesh_truncation),
+                           args.getDouble("mesh-min-weight", &mesh_min_weight), args.getInt("seed", &seed),
+                           args.getInt("threads", &config.threads)};
+  for (const Status& s : parsed)
+    if (!s) return fail(s.message());
+  if (seed < 0) return fail("--seed expects an integer >= 0");
+  if (!(std::abs(mesh_min_weight) <= std::numeric_limits<float>::max())) {
+    return fail("--mesh-min-weight expects a finite number (< 0 selects w_th)");
+  }
+  config.tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
+  config.seed = static_cast<unsigned>(seed);
+  if (Status s = config.validate(); !s) {
+    const bool overridden = args.has("truncation") || args.has("mesh-truncation") || args.has("mesh-min-weight") ||
+                            args.has("threads");
+    const std::string source = config_file.empty() ? "default config" : config_file;
+    return fail(source + (overridden ? " with the command-line overrides" : "") + ": " + s.message());
+  }
+
+  std::vector<PathRow> rows;
+  if (Status s = readPath(path_file, &rows); !s) return fail(s.message());
+  TriangleMesh mesh;
+  if (Status s = loadScene(config.scene, &mesh); !s) return fail(s.message());
+  std::unique_ptr<RaycastScene> scene;
+  if (Status s = RaycastScene::create(mesh, &scene); !s) return fail(s.message());
+  const std::string scene_name = std::filesystem::path(config.scene.scene).stem().string();
+  const std::string out_dir = args.get("out", "output/refuse_" + scene_name);
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) return fail("cannot create '" + out_dir + "': " + ec.message());
+
+  // Fusion as MissionRunner::run(): planning map, mesh layer, weight scale,
+  // take-off free ball, camera noise seed, frame index as render seed.
+  TsdfConfig tsdf = config.tsdf;
+  tsdf.threads = config.threads;
+  TsdfMap map(tsdf);
+  TsdfIntegrator integrator(&map);
+  integrator.setWeightScale(std::max(1.0, config.camera.rate_hz / config.frame_rate));
+  MeshLayer mesh_layer(&map);
+  mesh_layer.setWeightScale(integrator.weightScale());
+  CameraConfig camera_config = config.camera;
+  camera_config.noise_seed = config.camera.noise_seed + config.seed;
+  const DepthCamera camera(camera_config);
+  const DepthRenderer renderer(*scene, camera, config.threads);
+  const Transform T_B_C = opticalInBody();
+  const TsdfConfig& meshed = mesh_layer.map().config();
+  std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh truncation %.3f m%s, "
+              "mesh_min_weight %g; %zu frames from %s (seed %d)\n",
+              config.scene.scene.c_str(), mesh.numTriangles(), config_file.empty() ? "(defaults)" : config_file.c_str(),
+              tsdf.voxel_size, tsdf.truncationDistance(), meshed.truncationDistance(),
+              mesh_layer.separate() ? " (separate layer)" : " (the map itself)", meshed.mesh_min_weight, rows.size(),
+              path_file.c_str(), seed);
+  std::fflush(stdout);
+
+  if (config.start_free_radius > 0.0) {
+    Status s = integrator.markFree(config.start.head<3>(), config.start_free_radius);
+    if (s) s = mesh_layer.markFree(config.start.head<3>(), config.start_free_radius);
+    if (!s) return fail("take-off free ball: " + s.message());
+  }
+  const auto fuse0 = Clock::now();
+  DepthImage depth;
+  int reported_tenths = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const PathRow& row = rows[i];
+    const Transform T_W_C = levelBodyPose(row.p_W, row.yaw) * T_B_C;
+    renderer.render(T_W_C, &depth, i);
+    Status fused = integrator.integrateDepth(camera, depth, T_W_C);
+    if (fused) fused = mesh_layer.integrateDepth(camera, depth, T_W_C);
+    if (!fused) {
+      return fail(path_file + ":" + std::to_string(row.line) + ": integration of frame " + std::to_string(i) +
+                  " (t = " + std::to_string(row.t) + " s) failed: " + fused.message());
+    }
+    const int tenths = static_cast<int>(10 * (i + 1) / rows.size());
+    if (tenths > reported_tenths) {
+      reported_tenths = tenths;
+      std::printf("  fused %zu / %zu frames (%d %%), %.1f s\n", i + 1, rows.size(), 10 * tenths,
+                  secondsSince(fuse0));
+      std::fflush(stdout);
+    }
+  }
+  const double fuse_s = secondsSince(fuse0);
+
+  MeshExtractor mesher;
+  mesher.update(mesh_layer.map());
+  const TriangleMesh reconstruction = mesher.mesh();
+  const std::string ply = out_dir + "/reconstruction.ply";
+  if (reconstruction.empty()) {
+    std::filesystem::remove(ply, ec);  // no stale mesh of an earlier run
+    std::printf("  the reconstruction is empty: no %s written\n", ply.c_str());
+  } else if (Status s = saveMesh(reconstruction, ply); !s) {
+    return fail(s.message());
+  }
+  const EvalConfig eval_config = missionEvalConfig(config);
+  EvalResult eval;
+  if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
+  if (Status s = ReportWriter(eval, {ply, config.scene.scene}).write(out_dir + "/eval"); !s) return fail(s.message());
+  const double wall_s = secondsSince(wall0);
+
+  JsonWriter json;
+  json.beginObject().value("path", path_file).value("scene", config.scene.scene).value("config", config_file);
+  json.value("seed", seed).value("threads", config.threads).value("voxel_size_m", tsdf.voxel_size);
+  json.value("truncation_m", tsdf.truncationDistance()).value("mesh_layer", mesh_layer.separate());
+  json.value("mesh_truncation_m", meshed.truncationDistance());
+  json.value("mesh_min_weight", static_cast<double>(meshed.mesh_min_weight));
+  json.value("w_th", static_cast<double>(tsdf.w_th)).value("weight_scale", integrator.weightScale());
+  json.value("frames", rows.size()).value("triangles", reconstruction.numTriangles());
+  json.value("e_max_m", eval_config.eMax()).value("coverage", eval.coverage.coverage());
+  json.value("error_mean_m", eval.error_stats.mean).value("error_std_m", eval.error_stats.std_dev);
+  json.value("rmse_m", eval.error_stats.rmse).value("fuse_s", fuse_s).value("wall_s", wall_s).endObject();
+  std::ofstream out(out_dir + "/refuse.json");
+  out << json.str();
+  if (!out) return fail("cannot write " + out_dir + "/refuse.json");
+
+  std::printf("refused %zu frames: coverage %.2f %%, error mean %.2f cm, std %.2f cm, RMSE %.2f cm -> %s\n",
+              rows.size(), 100.0 * eval.coverage.coverage(), 100.0 * eval.error_stats.mean,
+              100.0 * eval.error_stats.std_dev, 100.0 * eval.error_stats.rmse, out_dir.c_str());
+  return 0;
+}
