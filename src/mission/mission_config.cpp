@@ -215,4 +215,13 @@ EvalConfig missionEvalConfig(const MissionConfig& c) {
   return e;
 }
 
+Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir, MissionConfig* config,
+                             std::string* config_file) {
+  *config_file = args.get("config", defaultConfigFile(package_dir, args.get("scene", "plant")));
+  if (!config_file->empty()) {
+    if (Status s = loadMissionConfig(*config_file, config); !s) return s;
+  }
+  return sceneConfigFromArgs(args, &config->scene);
+}
+
 }  // namespace surface_nbv

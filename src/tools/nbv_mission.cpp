@@ -105,12 +105,8 @@ int main(int argc, char** argv) {
   }
   if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
   MissionConfig config;
-  const std::string scene_arg = args.get("scene", "plant");
-  const std::string config_file = args.get("config", defaultConfigFile(NBV_SOURCE_DIR, scene_arg));
-  if (!config_file.empty()) {
-    if (Status s = loadMissionConfig(config_file, &config); !s) return fail(s.message());
-  }
-  if (Status s = sceneConfigFromArgs(args, &config.scene); !s) return fail(s.message());
+  std::string config_file;
+  if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());
   int trials = 1, seed = 1;
   const Status parsed[] = {args.getInt("trials", &trials), args.getInt("seed", &seed),
                            args.getInt("threads", &config.threads),

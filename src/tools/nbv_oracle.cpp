@@ -72,12 +72,8 @@ int main(int argc, char** argv) {
   }
   if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
   MissionConfig mission;
-  const std::string scene_arg = args.get("scene", "plant");
-  const std::string config_file = args.get("config", defaultConfigFile(NBV_SOURCE_DIR, scene_arg));
-  if (!config_file.empty()) {
-    if (Status s = loadMissionConfig(config_file, &mission); !s) return fail(s.message());
-  }
-  if (Status s = sceneConfigFromArgs(args, &mission.scene); !s) return fail(s.message());
+  std::string config_file;
+  if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &mission, &config_file); !s) return fail(s.message());
   int seed = 1, max_candidates = 0;
   double online_path = 0.0, online_min = 0.0;
   if (Status s = mission.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());

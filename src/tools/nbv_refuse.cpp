@@ -146,12 +146,8 @@ int main(int argc, char** argv) {
   const std::string path_file = args.get("path", "");
 
   MissionConfig config;
-  const std::string scene_arg = args.get("scene", "plant");
-  const std::string config_file = args.get("config", defaultConfigFile(NBV_SOURCE_DIR, scene_arg));
-  if (!config_file.empty()) {
-    if (Status s = loadMissionConfig(config_file, &config); !s) return fail(s.message());
-  }
-  if (Status s = sceneConfigFromArgs(args, &config.scene); !s) return fail(s.message());
+  std::string config_file;
+  if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());
   int seed = 1;
   double mesh_min_weight = config.tsdf.mesh_min_weight;
   const Status parsed[] = {args.getDouble("truncation", &config.tsdf.truncation),

@@ -13,8 +13,8 @@
 
 #include <string>
 
-#include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/eval/eval_config.h"
+#include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
@@ -72,6 +72,13 @@ Status loadMissionConfig(const std::string& file, MissionConfig* config);
 // of the package when it exists (`package_dir` is the package's source
 // directory), else the defaults with the scene set.
 std::string defaultConfigFile(const std::string& package_dir, const std::string& scene);
+
+// A tool's mission config from its command line: --config FILE, else
+// config/<--scene>.yaml of the package when it exists (scene default
+// "plant"), then the scene options (scene_source.h) on top. *config_file
+// gets the file read, "" when none.
+Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir, MissionConfig* config,
+                             std::string* config_file);
 
 // The evaluation a mission's reconstruction is reported with (nbv_mission,
 // nbv_refuse): e_max from the voxel size, the camera's depth range and the
