@@ -57,6 +57,7 @@ struct TrialRow {
 
 Status writeCsvs(const std::string& dir, const MissionResult& r) {
   std::ofstream path(dir + "/path.csv");
+  path.precision(10);  // nbv_refuse renders these poses again: keep them to well below a pixel
   path << "t_s,x_m,y_m,z_m,yaw_rad\n";
   for (size_t i = 0; i < r.flown.size(); ++i) {
     const Eigen::Vector4d& q = r.flown[i];
