@@ -32,7 +32,8 @@ Status TsdfConfig::validate() const {
   if (!std::isfinite(voxel_size) || voxel_size <= 0.0) return Status::Error("voxel_size expected > 0");
   if (!std::isfinite(truncation) || truncation < 0.0) return Status::Error("truncation expected >= 0 (0 = 3 voxels)");
   if (truncation > 0.0 && truncation < voxel_size) return Status::Error("truncation expected >= voxel_size");
-  if (!std::isfinite(mesh_truncation) || mesh_truncation < 0.0 || (mesh_truncation > 0.0 && mesh_truncation < voxel_size)) {
+  if (!std::isfinite(mesh_truncation) || mesh_truncation < 0.0 ||
+      (mesh_truncation > 0.0 && mesh_truncation < voxel_size)) {
     return Status::Error("mesh_truncation expected 0 (mesh the map itself) or >= voxel_size");
   }
   if (!std::isfinite(w_th) || w_th <= 0.0f) return Status::Error("w_th expected > 0");
