@@ -180,6 +180,9 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("turn_lead", &c->explorer.turn_lead);
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
+  m.get("gaze", &c->explorer.gaze.enabled);
+  m.get("gaze_step", &c->explorer.gaze.step);
+  m.get("gaze_min_ises", &c->explorer.gaze.min_ises);
   m.get("pool_unknown_below", &c->explorer.pool_unknown_below);
   // The rays only serve pool_unknown_below: a mission without it skips them.
   c->surface.unknown_fraction = c->explorer.pool_unknown_below > 0.0;
@@ -195,6 +198,10 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
     return Status::Error(file + ": mission/invalid_pixels expected 'ignore', 'clear' or 'clear_inf'");
   }
   c->surface.camera = c->camera;
+  c->explorer.gaze.hfov_deg = c->camera.hfov_deg;
+  c->explorer.gaze.vfov_deg = c->camera.vfov_deg;
+  c->explorer.gaze.min_range = c->camera.min_range;
+  c->explorer.gaze.max_range = c->camera.max_range;
   c->surface.collision_radius = c->path.collision_radius;
   return Status::Ok();
 }

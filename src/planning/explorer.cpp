@@ -73,6 +73,9 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
+  if (gaze.enabled) {
+    if (Status s = gaze.validate(); !s) return s;
+  }
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
   if (!(pool_unknown_below >= 0.0) || pool_unknown_below > 1.0) return Status::Error("pool_unknown_below expected in [0, 1]");
   if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
@@ -353,6 +356,9 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());
       orientLeg(&path_, target);
+      if (config_.gaze.enabled && config_.travel_yaw) {
+        stats_.gaze_vertices += applyGaze(config_.gaze, gaze_targets_, map_, config_.turn_distance + 0.1, &path_);
+      }
       have_target_ = true;
       d->action = ExplorerAction::kFly;
       d->path = path_;
@@ -455,6 +461,7 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     return d;
   }
   const Frontier f = plannable(frontier);
+  if (config_.gaze.enabled) gaze_targets_ = gazeTargets(frontier);
   if (config_.pool_unknown_below > 0.0) {
     unknown_.clear();
     for (size_t i = 0; i < f.viewpoints.size(); ++i)

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/ros/sim_params.h"
 
 namespace surface_nbv {
 
@@ -57,6 +58,9 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
   r->get("min_visible", &e->min_visible);
+  r->get("gaze", &e->gaze.enabled);
+  r->get("gaze_step", &e->gaze.step);
+  r->get("gaze_min_ises", &e->gaze.min_ises);
   r->get("pool_unknown_below", &e->pool_unknown_below);
   r->get("max_leg_attempts", &e->max_leg_attempts);
   r->get("path_distances", &e->path_distances);
@@ -125,6 +129,13 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readSharedMapConfig(&shared, &c->map);
   shared.get("lambda_tc", &c->explorer.graph.lambda_tc);
   shared.get("lambda_ic", &c->explorer.graph.lambda_ic);
+  // The gaze looks with the shared camera.
+  CameraConfig camera;
+  readCameraConfig(&shared, &camera);
+  c->explorer.gaze.hfov_deg = camera.hfov_deg;
+  c->explorer.gaze.vfov_deg = camera.vfov_deg;
+  c->explorer.gaze.min_range = camera.min_range;
+  c->explorer.gaze.max_range = camera.max_range;
   if (Status st = shared.status(); !st) return st;
   if (Status st = c->validate(); !st) return Status::Error(priv.getNamespace() + "/" + st.message());
   return Status::Ok();

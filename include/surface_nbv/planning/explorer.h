@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "surface_nbv/planning/cluster_graph.h"
+#include "surface_nbv/planning/gaze_yaw.h"
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/planning/reachable_space.h"
 #include "surface_nbv/surface/frontier.h"
@@ -62,6 +63,10 @@ struct ExplorerConfig {
   // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
   // many metres per radian (speed / yaw rate turns at the full yaw rate).
   double turn_lead = 0.0;         // m/rad
+  // travel_yaw only: between a leg's start and its final turn the UAV looks
+  // where it sees the most ISEs of the frontier the leg was planned on
+  // (gaze_yaw.h), along the leg where it sees fewer than gaze.min_ises.
+  GazeConfig gaze;
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
   // While other viewpoints are in the tour, a viewpoint that faces less than
@@ -146,6 +151,7 @@ struct ExplorerStats {
   size_t pooled = 0;            // pool_unknown_below: insertions skipped plus targets dropped
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
+  size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -227,6 +233,7 @@ class Explorer {
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
   std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
+  std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
   ExplorerStats stats_;
 };
 
