@@ -73,6 +73,7 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
+  if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
   if (gaze.enabled) {
     if (Status s = gaze.validate(); !s) return s;
   }
@@ -304,13 +305,30 @@ bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vecto
   return std::isfinite(best);
 }
 
-double Explorer::unknownNear(const Eigen::Vector3d& p) const {
-  double fraction = 1.0, best = config_.match_radius;
-  for (const auto& v : unknown_) {
+double Explorer::nearestValue(const std::vector<std::pair<Eigen::Vector3d, double>>& list, const Eigen::Vector3d& p,
+                              double none) const {
+  double value = none, best = config_.match_radius;
+  for (const auto& v : list) {
     const double dist = (v.first - p).norm();
-    if (dist <= best) best = dist, fraction = v.second;
+    if (dist <= best) best = dist, value = v.second;
   }
-  return fraction;
+  return value;
+}
+
+void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
+  const size_t n = std::min(tour_.size(), static_cast<size_t>(std::max(config_.head_lookahead, 0)));
+  size_t best = 0;
+  double best_utility = -1.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double visible = nearestValue(visible_, tour_[i].head<3>(), 0.0);
+    const double d = (tour_[i].head<3>() - uav.head<3>()).norm();
+    const double utility = visible * std::exp(-config_.graph.lambda_tc * d);
+    if (utility > best_utility) best = i, best_utility = utility;
+  }
+  if (best == 0) return;
+  std::rotate(tour_.begin(), tour_.begin() + static_cast<std::ptrdiff_t>(best),
+              tour_.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+  ++stats_.promoted;
 }
 
 void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
@@ -329,6 +347,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
     tour_.erase(tour_.begin());
     ++stats_.pooled;
   }
+  if (config_.head_lookahead > 1 && !have_target_) promoteBestHead(uav);
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     const Eigen::Vector4d target = tour_.front();
     if (config_.check_reachable && map_ != nullptr) {
@@ -462,6 +481,11 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
   }
   const Frontier f = plannable(frontier);
   if (config_.gaze.enabled) gaze_targets_ = gazeTargets(frontier);
+  if (config_.head_lookahead > 1) {
+    visible_.clear();
+    for (size_t i = 0; i < f.viewpoints.size(); ++i)
+      if (wanted(f, i)) visible_.emplace_back(f.viewpoints[i].position, static_cast<double>(f.viewpoints[i].visible.size()));
+  }
   if (config_.pool_unknown_below > 0.0) {
     unknown_.clear();
     for (size_t i = 0; i < f.viewpoints.size(); ++i)

@@ -58,6 +58,7 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
   r->get("min_visible", &e->min_visible);
+  r->get("head_lookahead", &e->head_lookahead);
   r->get("gaze", &e->gaze.enabled);
   r->get("gaze_step", &e->gaze.step);
   r->get("gaze_min_ises", &e->gaze.min_ises);

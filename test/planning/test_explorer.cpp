@@ -405,6 +405,39 @@ TEST(Explorer, ViewpointsFacingLittleUnknownWaitUntilTheTourRunsOut) {
   EXPECT_EQ(explorer.stats().full_recomputes, 2u);
 }
 
+// head_lookahead: of the first tour viewpoints, the one with the best
+// |C_q| exp(-lambda_tc d) is flown first.
+TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
+  WallWorld world(true);
+  // Near viewpoint seeing 1 ISE, farther one (same side of the wall) seeing 20.
+  Frontier f = makeFrontier({{{-3, -1.5, 2.5}}, {{-3, 3, 2.5}}});
+  for (int i = 0; i < 19; ++i) {
+    Ise ise;
+    ise.position = Eigen::Vector3d(-2, 3, 2.5);
+    ise.viewpoint = 1;
+    f.viewpoints[1].visible.push_back(static_cast<uint32_t>(f.ises.size()));
+    f.ises.push_back(ise);
+  }
+  auto firstTarget = [&](int lookahead, size_t* promoted) {
+    ExplorerConfig config;
+    config.head_lookahead = lookahead;
+    Explorer explorer(config, pathConfig());
+    EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    const ExplorerDecision d = explorer.update(f, kUav, false);
+    EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
+    EXPECT_EQ(explorer.tour().size(), 2u) << "nothing leaves the tour";
+    *promoted = explorer.stats().promoted;
+    return d.target;
+  };
+  size_t promoted = 0;
+  // The tour (shortest open path) starts at the near one: 1 * e^(-0.3 * 1.8) = 0.58
+  // against 20 * e^(-0.3 * 6.1) = 3.2 for the far one.
+  EXPECT_NEAR(firstTarget(0, &promoted).y(), -1.5, 1e-9);
+  EXPECT_EQ(promoted, 0u);
+  EXPECT_NEAR(firstTarget(2, &promoted).y(), 3.0, 1e-9);
+  EXPECT_EQ(promoted, 1u);
+}
+
 TEST(Explorer, ConfigRefusesBadValues) {
   ExplorerConfig c;
   EXPECT_TRUE(c.validate().ok());
@@ -422,6 +455,9 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.pool_unknown_below = 1.5;
   EXPECT_NE(c.validate().message().find("pool_unknown_below"), std::string::npos);
+  c = ExplorerConfig();
+  c.head_lookahead = -1;
+  EXPECT_NE(c.validate().message().find("head_lookahead"), std::string::npos);
 }
 
 }  // namespace

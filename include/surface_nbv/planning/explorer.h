@@ -63,6 +63,11 @@ struct ExplorerConfig {
   // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
   // many metres per radian (speed / yaw rate turns at the full yaw rate).
   double turn_lead = 0.0;         // m/rad
+  // When a new target is due, the first head_lookahead tour viewpoints are
+  // compared by eq. 5's utility for one viewpoint, |C_q| exp(-lambda_tc d),
+  // d the straight distance from the UAV, and the best one is flown first
+  // (the rest keep their order). 0 or 1: the tour's order as it is.
+  int head_lookahead = 0;
   // travel_yaw only: between a leg's start and its final turn the UAV looks
   // where it sees the most ISEs of the frontier the leg was planned on
   // (gaze_yaw.h), along the leg where it sees fewer than gaze.min_ises.
@@ -152,6 +157,7 @@ struct ExplorerStats {
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
+  size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -212,7 +218,12 @@ class Explorer {
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // unknown_fraction of the wanted frontier viewpoint nearest p within match_radius (1: none).
-  double unknownNear(const Eigen::Vector3d& p) const;
+  double unknownNear(const Eigen::Vector3d& p) const { return nearestValue(unknown_, p, 1.0); }
+  // The value of the entry of `list` nearest p within match_radius, else `none`.
+  double nearestValue(const std::vector<std::pair<Eigen::Vector3d, double>>& list, const Eigen::Vector3d& p,
+                      double none) const;
+  // head_lookahead: moves the best of the first tour viewpoints to the front.
+  void promoteBestHead(const Eigen::Vector4d& uav);
   // Applies travel_yaw to a leg ending at `target`.
   void orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector4d& target) const;
 
@@ -233,6 +244,7 @@ class Explorer {
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
   std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
+  std::vector<std::pair<Eigen::Vector3d, double>> visible_;  // last frontier: wanted viewpoints, |C_q| (head_lookahead)
   std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
   ExplorerStats stats_;
 };
