@@ -199,10 +199,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
     return Status::Error(file + ": mission/invalid_pixels expected 'ignore', 'clear' or 'clear_inf'");
   }
   c->surface.camera = c->camera;
-  c->explorer.gaze.hfov_deg = c->camera.hfov_deg;
-  c->explorer.gaze.vfov_deg = c->camera.vfov_deg;
-  c->explorer.gaze.min_range = c->camera.min_range;
-  c->explorer.gaze.max_range = c->camera.max_range;
+  c->explorer.gaze.camera = c->camera;
   c->surface.collision_radius = c->path.collision_radius;
   return Status::Ok();
 }

@@ -75,6 +75,7 @@ Status ExplorerConfig::validate() const {
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
   if (gaze.enabled) {
+    if (!travel_yaw) return Status::Error("gaze expects travel_yaw (it turns the yaws travel_yaw sets)");
     if (Status s = gaze.validate(); !s) return s;
   }
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
@@ -375,7 +376,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       path_ = prefix;
       path_.insert(path_.end(), leg.path.begin(), leg.path.end());
       orientLeg(&path_, target);
-      if (config_.gaze.enabled && config_.travel_yaw) {
+      if (config_.gaze.enabled) {
         stats_.gaze_vertices += applyGaze(config_.gaze, gaze_targets_, map_, config_.turn_distance + 0.1, &path_);
       }
       have_target_ = true;

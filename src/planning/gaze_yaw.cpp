@@ -34,37 +34,43 @@ bool lineOfSight(const CollisionMap& map, const Eigen::Vector3d& p, const Eigen:
 void candidates(const GazeConfig& c, const std::vector<GazeTarget>& targets, const CollisionMap* map,
                 const Eigen::Vector3d& p, std::vector<Candidate>* out) {
   out->clear();
-  const double tan_v = std::tan(0.5 * c.vfov_deg * kDeg);
-  const double cos_h = std::cos(0.5 * c.hfov_deg * kDeg);
+  const double tan_v = std::tan(0.5 * c.camera.vfov_deg * kDeg);
+  const double cos_h = std::cos(0.5 * c.camera.hfov_deg * kDeg);
   for (const GazeTarget& t : targets) {
     const Eigen::Vector3d d = t.position - p;
     const double h = d.head<2>().norm();
     // Some yaw puts it on the optical axis (depth h) and the FOV's edge
     // (depth h cos(hfov / 2)): both bounds must be reachable.
-    if (h < c.min_range || h * cos_h > c.max_range || std::abs(d.z()) > h * tan_v) continue;
+    if (h < c.camera.min_range || h * cos_h > c.camera.max_range || std::abs(d.z()) > h * tan_v) continue;
     if (t.direction.dot(-d) <= 0.0) continue;  // p is behind the surface
     if (map != nullptr && !lineOfSight(*map, p, t.position, c.end_margin)) continue;
     out->push_back({std::atan2(d.y(), d.x()), h, d.z()});
   }
 }
 
-// Whether the level camera with `yaw` has candidate a inside its frustum.
-bool inView(const GazeConfig& c, double tan_h, double tan_v, const Candidate& a, double yaw) {
-  const double off = a.azimuth - yaw;
-  const double forward = a.horizontal * std::cos(off);
-  if (forward < c.min_range || forward > c.max_range) return false;
-  return std::abs(a.horizontal * std::sin(off)) <= forward * tan_h && std::abs(a.dz) <= forward * tan_v;
-}
+// The level camera's frustum, seen from above: whether a candidate lies in it at `yaw`.
+struct Frustum {
+  explicit Frustum(const CameraConfig& c)
+      : tan_h(std::tan(0.5 * c.hfov_deg * kDeg)), tan_v(std::tan(0.5 * c.vfov_deg * kDeg)),
+        min_range(c.min_range), max_range(c.max_range) {}
+  bool sees(const Candidate& a, double yaw) const {
+    const double off = a.azimuth - yaw;
+    const double forward = a.horizontal * std::cos(off);
+    if (forward < min_range || forward > max_range) return false;
+    return std::abs(a.horizontal * std::sin(off)) <= forward * tan_h && std::abs(a.dz) <= forward * tan_v;
+  }
+  double tan_h, tan_v, min_range, max_range;
+};
 
 double binYaw(const GazeConfig& c, int k) { return -M_PI + 2.0 * M_PI * k / c.yaw_bins; }
 
 // Visible counts for the yaw_bins yaws binYaw(k).
 void countBins(const GazeConfig& c, const std::vector<Candidate>& cands, std::vector<int>* counts) {
   counts->assign(static_cast<size_t>(c.yaw_bins), 0);
-  const double tan_h = std::tan(0.5 * c.hfov_deg * kDeg), tan_v = std::tan(0.5 * c.vfov_deg * kDeg);
+  const Frustum frustum(c.camera);
   for (int k = 0; k < c.yaw_bins; ++k) {
     int n = 0;
-    for (const Candidate& a : cands) n += inView(c, tan_h, tan_v, a, binYaw(c, k));
+    for (const Candidate& a : cands) n += frustum.sees(a, binYaw(c, k));
     (*counts)[static_cast<size_t>(k)] = n;
   }
 }
@@ -76,11 +82,7 @@ Status GazeConfig::validate() const {
   if (min_ises < 1) return Status::Error("gaze min_ises expected >= 1");
   if (yaw_bins < 4 || yaw_bins > 360) return Status::Error("gaze yaw_bins expected in [4, 360]");
   if (!(end_margin >= 0.0) || !std::isfinite(end_margin)) return Status::Error("gaze end_margin expected >= 0");
-  if (!finitePositive(hfov_deg) || hfov_deg >= 180.0) return Status::Error("gaze hfov_deg expected in (0, 180)");
-  if (!finitePositive(vfov_deg) || vfov_deg >= 180.0) return Status::Error("gaze vfov_deg expected in (0, 180)");
-  if (!(min_range >= 0.0) || !finitePositive(max_range) || max_range <= min_range) {
-    return Status::Error("gaze ranges expected 0 <= min_range < max_range");
-  }
+  if (Status s = camera.validate(); !s) return s;
   return Status::Ok();
 }
 
@@ -98,9 +100,9 @@ int countVisible(const GazeConfig& config, const std::vector<GazeTarget>& target
                  const Eigen::Vector3d& p, double yaw) {
   std::vector<Candidate> cands;
   candidates(config, targets, map, p, &cands);
-  const double tan_h = std::tan(0.5 * config.hfov_deg * kDeg), tan_v = std::tan(0.5 * config.vfov_deg * kDeg);
+  const Frustum frustum(config.camera);
   int n = 0;
-  for (const Candidate& a : cands) n += inView(config, tan_h, tan_v, a, yaw);
+  for (const Candidate& a : cands) n += frustum.sees(a, yaw);
   return n;
 }
 

@@ -130,13 +130,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readSharedMapConfig(&shared, &c->map);
   shared.get("lambda_tc", &c->explorer.graph.lambda_tc);
   shared.get("lambda_ic", &c->explorer.graph.lambda_ic);
-  // The gaze looks with the shared camera.
-  CameraConfig camera;
-  readCameraConfig(&shared, &camera);
-  c->explorer.gaze.hfov_deg = camera.hfov_deg;
-  c->explorer.gaze.vfov_deg = camera.vfov_deg;
-  c->explorer.gaze.min_range = camera.min_range;
-  c->explorer.gaze.max_range = camera.max_range;
+  readCameraConfig(&shared, &c->explorer.gaze.camera);  // the gaze looks with the shared camera
   if (Status st = shared.status(); !st) return st;
   if (Status st = c->validate(); !st) return Status::Error(priv.getNamespace() + "/" + st.message());
   return Status::Ok();

@@ -92,12 +92,9 @@ int main(int argc, char** argv) {
     if (name != "scene") options.push_back(name);
   }
   CliArgs args(options, {"no-pruning", "plots", "help"});
-  if (Status s = args.parse(argc, argv); !s) return badArguments(s.message());
-  if (args.has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (!args.positional().empty()) return badArguments("unexpected argument '" + args.positional()[0] + "'");
+  bool help = false;
+  if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return badArguments(s.message());
+  if (help) return 0;
   if (!args.has("reconstruction") || !args.has("ground-truth")) {
     return badArguments("--reconstruction and --ground-truth are required");
   }

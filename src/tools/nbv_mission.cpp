@@ -99,12 +99,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length"});
   CliArgs args(options, {"help", "no-plots"});
-  if (Status s = args.parse(argc, argv); !s) return fail(s.message());
-  if (args.has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
+  bool help = false;
+  if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
+  if (help) return 0;
   MissionConfig config;
   std::string config_file;
   if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());

@@ -65,12 +65,9 @@ int main(int argc, char** argv) {
   options.insert(options.end(), {"config", "seed", "out", "threads", "target-spacing", "candidate-spacing",
                                  "max-candidates", "path-iterations", "online-path", "online-min"});
   CliArgs args(options, {"help"});
-  if (Status s = args.parse(argc, argv); !s) return fail(s.message());
-  if (args.has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
+  bool help = false;
+  if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
+  if (help) return 0;
   MissionConfig mission;
   std::string config_file;
   if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &mission, &config_file); !s) return fail(s.message());

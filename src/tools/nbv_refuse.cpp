@@ -136,12 +136,9 @@ int main(int argc, char** argv) {
   options.insert(options.end(),
                  {"path", "config", "truncation", "mesh-truncation", "mesh-min-weight", "seed", "threads", "out"});
   CliArgs args(options, {"help"});
-  if (Status s = args.parse(argc, argv); !s) return fail(s.message());
-  if (args.has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (!args.positional().empty()) return fail("unexpected argument '" + args.positional()[0] + "'");
+  bool help = false;
+  if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
+  if (help) return 0;
   if (!args.has("path")) return fail("--path PATH.csv is required (nbv_mission's trial_K/path.csv)");
   const std::string path_file = args.get("path", "");
 

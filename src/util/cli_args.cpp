@@ -55,6 +55,18 @@ Status CliArgs::parse(int argc, char** argv) {
   return Status::Ok();
 }
 
+Status CliArgs::parseCommand(int argc, char** argv, const std::string& usage, std::ostream& out, bool* help) {
+  *help = false;
+  if (Status s = parse(argc, argv); !s) return s;
+  if (has("help")) {
+    out << usage;
+    *help = true;
+    return Status::Ok();
+  }
+  if (!positional_.empty()) return Status::Error("unexpected argument '" + positional_[0] + "'");
+  return Status::Ok();
+}
+
 std::string CliArgs::get(const std::string& key, const std::string& fallback) const {
   const auto it = values_.find(key);
   return it == values_.end() ? fallback : it->second;

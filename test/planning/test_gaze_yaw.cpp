@@ -143,10 +143,15 @@ TEST(GazeYaw, ConfigRefusesBadValues) {
   EXPECT_TRUE(bad([](GazeConfig* c) { c->min_ises = 0; }));
   EXPECT_TRUE(bad([](GazeConfig* c) { c->yaw_bins = 2; }));
   EXPECT_TRUE(bad([](GazeConfig* c) { c->end_margin = -1.0; }));
-  EXPECT_TRUE(bad([](GazeConfig* c) { c->hfov_deg = 180.0; }));
-  EXPECT_TRUE(bad([](GazeConfig* c) { c->max_range = c->min_range; }));
+  EXPECT_TRUE(bad([](GazeConfig* c) { c->camera.hfov_deg = 180.0; }));
+  EXPECT_TRUE(bad([](GazeConfig* c) { c->camera.max_range = c->camera.min_range; }));
   ExplorerConfig e;
+  e.travel_yaw = true;
   e.gaze.enabled = true;
+  EXPECT_TRUE(e.validate().ok());
+  e.travel_yaw = false;
+  EXPECT_NE(e.validate().message().find("travel_yaw"), std::string::npos);
+  e.travel_yaw = true;
   e.gaze.yaw_bins = 1;
   EXPECT_FALSE(e.validate().ok());
   e.gaze.enabled = false;

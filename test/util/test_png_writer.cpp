@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
@@ -108,4 +109,28 @@ TEST(CliArgs, ParsesOptionsFlagsAndRejectsUnknown) {
   ASSERT_TRUE(num.parse(3, const_cast<char**>(argv4)).ok());
   double d = 0;
   EXPECT_FALSE(num.getDouble("n", &d).ok());
+}
+
+TEST(CliArgs, ParseCommandPrintsHelpOrRefusesPositionalArguments) {
+  std::ostringstream out;
+  bool help = true;
+  CliArgs plain({"n"}, {"help"});
+  const char* argv[] = {"tool", "--n", "4"};
+  ASSERT_TRUE(plain.parseCommand(3, const_cast<char**>(argv), "usage\n", out, &help).ok());
+  EXPECT_FALSE(help);
+  EXPECT_TRUE(out.str().empty());
+  CliArgs asked({"n"}, {"help"});
+  const char* argv2[] = {"tool", "--help", "extra"};
+  ASSERT_TRUE(asked.parseCommand(3, const_cast<char**>(argv2), "usage\n", out, &help).ok());
+  EXPECT_TRUE(help);
+  EXPECT_EQ(out.str(), "usage\n");
+  CliArgs stray({"n"}, {"help"});
+  const char* argv3[] = {"tool", "file"};
+  const Status s = stray.parseCommand(2, const_cast<char**>(argv3), "usage\n", out, &help);
+  EXPECT_FALSE(help);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.message().find("unexpected argument 'file'"), std::string::npos);
+  CliArgs unknown({"n"}, {"help"});
+  const char* argv4[] = {"tool", "--m", "1"};
+  EXPECT_FALSE(unknown.parseCommand(3, const_cast<char**>(argv4), "usage\n", out, &help).ok());
 }

@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/surface/frontier.h"
 #include "surface_nbv/util/status.h"
 
@@ -35,8 +36,8 @@ struct GazeConfig {
   int min_ises = 3;         // fewer visible ISEs: look along the leg
   int yaw_bins = 36;        // candidate yaws over the full turn
   double end_margin = 0.5;  // m before the ISE where the line-of-sight walk stops
-  // The camera (mission_config fills these from nbv/camera).
-  double hfov_deg = 90.0, vfov_deg = 60.0, min_range = 1.6, max_range = 8.0;
+  // Its FOV and ranges (nbv_mission and nbv_planner copy nbv/camera).
+  CameraConfig camera;
 
   Status validate() const;
 };

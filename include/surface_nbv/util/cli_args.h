@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ class CliArgs {
   CliArgs(std::vector<std::string> options, std::vector<std::string> flags);
 
   Status parse(int argc, char** argv);
+  // For a tool that takes options only: parse(); then, with the `help` flag,
+  // writes `usage` to `out` and sets *help; else refuses positional arguments.
+  Status parseCommand(int argc, char** argv, const std::string& usage, std::ostream& out, bool* help);
   bool has(const std::string& key) const { return values_.count(key) > 0; }
   std::string get(const std::string& key, const std::string& fallback) const;
   Status getDouble(const std::string& key, double* value) const;
