@@ -40,7 +40,11 @@ struct Attachment {
 // with a lazy A* when it can and lets solve() grow the graph when it cannot.
 // Validity flags: OMPL's VALIDITY_TRUE (1) and our kKnownInvalid (2), which
 // OMPL reads as unknown, so it re-checks and removes such an element if its
-// own search meets one. clearValidity() clears both.
+// own search meets one. The bits above them hold the map epoch of the check:
+// mapChanged() only advances the epoch, and our searches treat a flag of an
+// older epoch as unchecked. OMPL reads only bit 1, so before OMPL searches
+// (solve(), kOmplSearch) the flags of older epochs are reset in one walk
+// over the graph (what clearValidity() did after every map change).
 // Vertices carry dense indices (vertex_index) for flat search arrays; they
 // are renumbered after OMPL or a removal changed the graph. OMPL's connected
 // components are only relabelled before OMPL reads them (solve()).
@@ -91,6 +95,7 @@ class Roadmap : public og::LazyPRMstar {
       }
     } else if (mode == kOmplSearch) {
       relabelComponents();
+      resetStaleFlags();
       ob::PathPtr solution;
       while (!solution && vertexComponentProperty_[s] == vertexComponentProperty_[g]) {
         solution = constructSolution(s, g);
@@ -99,10 +104,20 @@ class Roadmap : public og::LazyPRMstar {
       if (solution) return pathPoints(*solution, path);
     }
     relabelComponents();
+    resetStaleFlags();
     const ob::PlannerStatus status = solve(ptc);
     index_dirty_ = true;
     if (status == ob::PlannerStatus::EXACT_SOLUTION) return pathPoints(*pdef_->getSolutionPath(), path);
     return status;
+  }
+
+  // The map changed: every validity flag checked so far is out of date.
+  void mapChanged() {
+    ompl_flags_stale_ = true;
+    if (++epoch_ <= kMaxEpoch) return;
+    epoch_ = 1;  // wrapped: no flag may look current
+    for (auto [it, end] = boost::vertices(g_); it != end; ++it) vertexValidityProperty_[*it] = VALIDITY_UNKNOWN;
+    for (auto [it, end] = boost::edges(g_); it != end; ++it) edgeValidityProperty_[*it] = VALIDITY_UNKNOWN;
   }
 
   // Changes whenever vertices are added, removed or renumbered.
@@ -163,30 +178,52 @@ class Roadmap : public og::LazyPRMstar {
     search->open.push({d, v, parent});
   }
 
+  static constexpr unsigned int kEpochShift = 2, kMaxEpoch = (~0u) >> kEpochShift;
+  // The flag's validity bits if it was checked in this epoch, else 0 (unchecked).
+  unsigned int current(unsigned int flags) const {
+    return (flags >> kEpochShift) == epoch_ ? flags & (VALIDITY_TRUE | kKnownInvalid) : 0u;
+  }
+  bool knownInvalid(unsigned int flags) const { return current(flags) & kKnownInvalid; }
+
   template <typename F>
   void forEachNeighbour(Vertex v, F&& f) {
     for (auto [it, end] = boost::out_edges(v, g_); it != end; ++it) {
-      if (edgeValidityProperty_[*it] & kKnownInvalid) continue;
+      if (knownInvalid(edgeValidityProperty_[*it])) continue;
       const Vertex u = boost::target(*it, g_);
-      if (vertexValidityProperty_[u] & kKnownInvalid) continue;
+      if (knownInvalid(vertexValidityProperty_[u])) continue;
       f(static_cast<uint32_t>(indexProperty_[u]), weightProperty_[*it].value());
     }
   }
 
   bool vertexValid(Vertex v) {
     unsigned int& flags = vertexValidityProperty_[v];
-    if (flags & VALIDITY_TRUE) return true;
-    if (flags & kKnownInvalid) return false;
-    flags |= si_->isValid(stateProperty_[v]) ? VALIDITY_TRUE : kKnownInvalid;
+    if (const unsigned int known = current(flags)) return known & VALIDITY_TRUE;
+    flags = (epoch_ << kEpochShift) | (si_->isValid(stateProperty_[v]) ? VALIDITY_TRUE : kKnownInvalid);
     return flags & VALIDITY_TRUE;
   }
   // The motion is checked from a to b, as constructSolution checks it.
   bool edgeValid(const Edge& e, Vertex a, Vertex b) {
     unsigned int& flags = edgeValidityProperty_[e];
-    if (flags & VALIDITY_TRUE) return true;
-    if (flags & kKnownInvalid) return false;
-    flags |= si_->checkMotion(stateProperty_[a], stateProperty_[b]) ? VALIDITY_TRUE : kKnownInvalid;
+    if (const unsigned int known = current(flags)) return known & VALIDITY_TRUE;
+    flags = (epoch_ << kEpochShift) |
+            (si_->checkMotion(stateProperty_[a], stateProperty_[b]) ? VALIDITY_TRUE : kKnownInvalid);
     return flags & VALIDITY_TRUE;
+  }
+
+  // Before OMPL reads the flags: those of older epochs become unchecked
+  // (OMPL's VALIDITY_UNKNOWN in this epoch); this epoch's checks stay.
+  void resetStaleFlags() {
+    if (!ompl_flags_stale_) return;
+    const unsigned int unknown = epoch_ << kEpochShift;
+    for (auto [it, end] = boost::vertices(g_); it != end; ++it) {
+      unsigned int& flags = vertexValidityProperty_[*it];
+      if (!current(flags)) flags = unknown;
+    }
+    for (auto [it, end] = boost::edges(g_); it != end; ++it) {
+      unsigned int& flags = edgeValidityProperty_[*it];
+      if (!current(flags)) flags = unknown;
+    }
+    ompl_flags_stale_ = false;
   }
 
   ob::PlannerStatus pathPoints(ob::Path& solution, std::vector<Eigen::Vector3d>* path) const {
@@ -330,6 +367,8 @@ class Roadmap : public og::LazyPRMstar {
   std::vector<Eigen::Vector3d> pos_;
   bool index_dirty_ = false, components_dirty_ = false;
   uint64_t version_ = 0;
+  unsigned int epoch_ = 1;  // of the map the validity flags are checked against
+  bool ompl_flags_stale_ = false;
   std::vector<double> cost_;
   std::vector<uint32_t> parent_, seen_, closed_;
   uint32_t generation_ = 0;

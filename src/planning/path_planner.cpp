@@ -125,15 +125,6 @@ struct PathPlanner::Impl {
   ob::OptimizationObjectivePtr objective;
   ob::State* from = nullptr;  // scratch states for motionFree
   ob::State* to = nullptr;
-  // mapChanged() since the roadmap's validity flags were last cleared.
-  // Clearing walks every vertex and edge (tens of thousands on the power
-  // plant) while most map updates are followed by no query: the clear waits
-  // for the next use of the flags, which gives the same flags to every query.
-  bool validity_stale = false;
-  void syncValidity() {
-    if (prm && validity_stale) prm->clearValidity();
-    validity_stale = false;
-  }
 
   // LazyPRM's destructor does not free its roadmap states (OMPL 1.5:
   // ~LazyPRM() = default, only clear() frees them): free them here.
@@ -141,7 +132,6 @@ struct PathPlanner::Impl {
   void release() {
     if (prm) prm->clear();
     prm.reset();
-    validity_stale = false;
     if (si && from) si->freeState(from), si->freeState(to);
     from = to = nullptr;
   }
@@ -226,7 +216,6 @@ struct PathPlanner::Impl {
 
   double distance(DistanceCache* c, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
     if (!prm) return (a - b).norm();
-    syncValidity();
     const bool swap = PointKey(b) < PointKey(a);
     const Eigen::Vector3d& x = swap ? b : a;
     const Eigen::Vector3d& y = swap ? a : b;
@@ -273,7 +262,9 @@ Status PathPlanner::setMap(const CollisionMap* map, const AlignedBox& bounds) {
   return Status::Ok();
 }
 
-void PathPlanner::mapChanged() { impl_->validity_stale = impl_->prm != nullptr; }
+void PathPlanner::mapChanged() {
+  if (impl_->prm) impl_->prm->mapChanged();
+}
 
 void PathPlanner::clear() {
   if (impl_->map) impl_->build(config_);
@@ -284,7 +275,6 @@ size_t PathPlanner::roadmapVertices() const { return impl_->prm ? impl_->prm->mi
 std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdges(size_t max_edges) const {
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> edges;
   if (!impl_->prm) return edges;
-  impl_->syncValidity();
   ob::PlannerData data(impl_->si);
   impl_->prm->getPlannerData(data);
   std::vector<unsigned int> out;
@@ -325,7 +315,6 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   if (!impl_->si->isValid(g.get())) return finish(PathStatus::kInvalidGoal);
   if (config_.time_budget <= 0.0) return finish(PathStatus::kTimeout);
 
-  impl_->syncValidity();
   auto pdef = std::make_shared<ob::ProblemDefinition>(impl_->si);
   pdef->setStartAndGoalStates(s, g);
   pdef->setOptimizationObjective(impl_->objective);

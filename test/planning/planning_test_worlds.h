@@ -34,6 +34,17 @@ class WallWorld {
           if (inWall(Eigen::Vector3i(x, y, z), false)) set(Eigen::Vector3i(x, y, z), true);
     collision_->update(map_);
   }
+  // Empties the gap again and updates the collision map.
+  void openGap() {
+    const Eigen::Vector3i& g = map_.gridVoxels();
+    for (int z = 0; z < g.z(); ++z)
+      for (int y = 0; y < g.y(); ++y)
+        for (int x = 0; x < g.x(); ++x) {
+          const Eigen::Vector3i v(x, y, z);
+          if (inWall(v, false) && !inWall(v, true)) set(v, false);
+        }
+    collision_->update(map_);
+  }
   // Makes the box [lo, hi] occupied and updates the collision map.
   void addBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
     const Eigen::Vector3i& g = map_.gridVoxels();

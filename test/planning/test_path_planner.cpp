@@ -388,6 +388,25 @@ TEST(PathPlannerOracle, StraightWhenFreeLongerAroundTheWall) {
   EXPECT_GT(finite, points.size() / 2);
 }
 
+// The oracle flags what it finds blocked without removing it; once the map
+// changes again those flags are out of date: the reopened gap is used.
+TEST(PathPlannerOracle, BlockedFlagsExpireWithTheMap) {
+  WallWorld world(true);
+  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
+  const PathResult first = planner.plan(kStart, kGoal);
+  ASSERT_EQ(first.status, PathStatus::kExactSolution);
+  const Eigen::Vector3d a = kStart.head<3>(), b = kGoal.head<3>();
+  const double open = planner.distanceOracle()(a, b);
+  ASSERT_TRUE(std::isfinite(open));
+  world.closeGap();
+  planner.mapChanged();
+  EXPECT_TRUE(std::isinf(planner.distanceOracle()(a, b)));
+  world.openGap();
+  planner.mapChanged();
+  EXPECT_NEAR(planner.distanceOracle()(a, b), open, 1e-9);
+}
+
 TEST(PathPlannerOracle, InfiniteAcrossAClosedWall) {
   const WallWorld world(false);
   PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);

@@ -24,8 +24,9 @@
 // (relabelled once, only before solve() reads them). Only when the graph
 // holds no path does LazyPRM::solve grow the roadmap until one exists.
 // Checked vertices and edges stay valid until mapChanged() marks them all
-// unchecked again (LazyPRM::clearValidity, run by the next query: most map
-// updates see no query before the next one), so the next queries re-check,
+// unchecked again (it advances the epoch the flags are stamped with; only
+// before OMPL itself reads them are old flags reset, in one walk over the
+// graph), so the next queries re-check,
 // lazily, only what their candidate paths use; what is found invalid is
 // removed, and new samples repopulate freed space. Measured (bench_explorer
 // BM_PathQuery, power-plant frontier, 771-vertex roadmap, 2 loaded cores):
