@@ -1,6 +1,7 @@
 #include "surface_nbv/map/mesh_layer.h"
 
 #include "surface_nbv/map/map_io.h"
+#include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
 
@@ -13,6 +14,32 @@ MeshLayer::MeshLayer(const TsdfMap* planning) : planning_(planning) {
 
 Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
   return integrator_ ? integrator_->integrateDepth(camera, depth, T_W_C) : Status::Ok();
+}
+
+Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
+                                     const Transform& T_W_C, int threads, IntegrationStats* stats, Status* layer) {
+  Status planned, layered;
+  if (!integrator_ || threads < 2) {
+    planned = planning->integrateDepth(camera, depth, T_W_C, stats);
+    layered = planned ? integrateDepth(camera, depth, T_W_C) : Status::Ok();
+  } else {
+    planning->setThreads(1);
+    integrator_->setThreads(1);
+    parallelFor(2, 2, [&](size_t i) {
+      if (i == 0) {
+        planned = planning->integrateDepth(camera, depth, T_W_C, stats);
+      } else {
+        layered = integrator_->integrateDepth(camera, depth, T_W_C);
+      }
+    });
+    planning->setThreads(0);
+    integrator_->setThreads(0);
+  }
+  if (layer != nullptr) {
+    *layer = layered;
+    return planned;
+  }
+  return planned ? layered : planned;
 }
 
 Status MeshLayer::integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S,

@@ -60,7 +60,7 @@ std::vector<TsdfBlock*> TsdfIntegrator::candidateBlocks(const DepthCamera& camer
   const int slices = std::max(0, hi.z() - lo.z() + 1);
   std::vector<std::vector<Eigen::Vector3i>> kept(static_cast<size_t>(slices));
   std::vector<size_t> considered(static_cast<size_t>(slices), 0);
-  parallelFor(static_cast<size_t>(slices), cfg.threads, [&](size_t slice) {
+  parallelFor(static_cast<size_t>(slices), threads(), [&](size_t slice) {
     const int z = lo.z() + static_cast<int>(slice);
     for (int y = lo.y(); y <= hi.y(); ++y) {
       for (int x = lo.x(); x <= hi.x(); ++x) {
@@ -125,7 +125,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float trunc = static_cast<float>(cfg.truncationDistance());
   const float max_range = static_cast<float>(camera.config().max_range);
   const float far = max_range + trunc;
-  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, cfg.threads);
+  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, threads());
   const std::vector<TsdfBlock*> work = candidateBlocks(camera, T_W_C, &stats);
 
   // Projective update of every voxel of the candidate blocks.
@@ -141,7 +141,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float* usable = index_.usableData();
   const uint8_t* silhouette = index_.silhouetteData();
   std::vector<size_t> updated(work.size(), 0);
-  parallelFor(work.size(), cfg.threads, [&](size_t bi) {
+  parallelFor(work.size(), threads(), [&](size_t bi) {
     TsdfBlock* b = work[bi];
     const Eigen::Vector3d c0 = cfg.bounds.min + (b->index.cast<double>() * kBlockSize) * cfg.voxel_size +
                                Eigen::Vector3d::Constant(0.5 * cfg.voxel_size);

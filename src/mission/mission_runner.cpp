@@ -163,8 +163,7 @@ MissionResult MissionRunner::run() {
     renderer.render(T_W_C, &depth, result.frames);
     result.times.render += msSince(t_render);
     const auto t_integrate = Clock::now();
-    Status fused = integrator.integrateDepth(camera, depth, T_W_C);
-    if (fused) fused = mesh_layer_->integrateDepth(camera, depth, T_W_C);
+    const Status fused = mesh_layer_->integrateDepthWith(&integrator, camera, depth, T_W_C, c.threads);
     if (!fused) {
       result.status = Status::Error("integration failed at t = " + std::to_string(tracker.time()) + ": " + fused.message());
       break;

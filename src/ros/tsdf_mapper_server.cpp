@@ -190,11 +190,12 @@ void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   IntegrationStats s;
-  const Status status = f.camera ? integrator_.integrateDepth(*f.camera, f.depth, T_W_S, &s)
-                                 : integrator_.integratePoints(f.points, T_W_S, config_.camera.max_range, &s);
+  Status layer;
+  const Status status =
+      f.camera ? mesh_layer_.integrateDepthWith(&integrator_, *f.camera, f.depth, T_W_S, config_.tsdf.threads, &s, &layer)
+               : integrator_.integratePoints(f.points, T_W_S, config_.camera.max_range, &s);
   if (!status) return drop("integration", status.message());
-  const Status layer = f.camera ? mesh_layer_.integrateDepth(*f.camera, f.depth, T_W_S)
-                                : mesh_layer_.integratePoints(f.points, T_W_S, config_.camera.max_range);
+  if (!f.camera) layer = mesh_layer_.integratePoints(f.points, T_W_S, config_.camera.max_range);
   if (!layer) {
     stats_.count("mesh_layer_failed");
     ROS_WARN_THROTTLE(10.0, "tsdf_mapper: mesh layer: %s", layer.message().c_str());

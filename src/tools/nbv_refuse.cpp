@@ -213,8 +213,7 @@ int main(int argc, char** argv) {
     const PathRow& row = rows[i];
     const Transform T_W_C = levelBodyPose(row.p_W, row.yaw) * T_B_C;
     renderer.render(T_W_C, &depth, i);
-    Status fused = integrator.integrateDepth(camera, depth, T_W_C);
-    if (fused) fused = mesh_layer.integrateDepth(camera, depth, T_W_C);
+    const Status fused = mesh_layer.integrateDepthWith(&integrator, camera, depth, T_W_C, config.threads);
     if (!fused) {
       return fail(path_file + ":" + std::to_string(row.line) + ": integration of frame " + std::to_string(i) +
                   " (t = " + std::to_string(row.t) + " s) failed: " + fused.message());

@@ -120,6 +120,74 @@ TEST(MeshLayer, ShorterTruncationKeepsAThinWallsFacesInPlace) {
   EXPECT_LT(e_layer, 0.5 * e_planning);
 }
 
+namespace {
+
+// Same blocks with the same voxels, bit for bit.
+void expectSameVoxels(const TsdfMap& a, const TsdfMap& b) {
+  ASSERT_EQ(a.numBlocks(), b.numBlocks());
+  size_t differing = 0;
+  for (const auto& block : a.blocks()) {
+    const TsdfBlock* other = b.block(block->index);
+    ASSERT_NE(other, nullptr) << block->index.transpose();
+    for (int i = 0; i < kBlockVoxels; ++i) {
+      differing += block->voxels[i].phi != other->voxels[i].phi || block->voxels[i].w != other->voxels[i].w;
+    }
+  }
+  EXPECT_EQ(differing, 0u);
+}
+
+}  // namespace
+
+// Fusing the planning map and the layer side by side on two threads leaves
+// both exactly as fusing them one after the other; a bad frame fails both.
+TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
+  b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
+  const TriangleMesh mesh = b.take();
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  CameraConfig cam;
+  cam.width = 160;
+  cam.height = 120;
+  const DepthCamera camera(cam);
+  const DepthRenderer renderer(*scene, camera, 1);
+  TsdfConfig config = thinWallConfig();
+  config.mesh_truncation = 0.2;
+  config.threads = 2;
+  TsdfMap serial(config), side(config);
+  TsdfIntegrator serial_integrator(&serial), side_integrator(&side);
+  MeshLayer serial_layer(&serial), side_layer(&side);
+  DepthImage depth;
+  for (int k = 0; k < 6; ++k) {
+    const double dir = k % 2 == 0 ? 1.0 : -1.0;
+    const Transform T = lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
+    renderer.render(T, &depth);
+    IntegrationStats stats;
+    ASSERT_TRUE(serial_layer.integrateDepthWith(&serial_integrator, camera, depth, T, 1).ok());
+    ASSERT_TRUE(side_layer.integrateDepthWith(&side_integrator, camera, depth, T, 2, &stats).ok());
+    EXPECT_GT(stats.voxels_updated, 0u);
+  }
+  EXPECT_GT(serial.numBlocks(), 10u);
+  expectSameVoxels(serial, side);
+  expectSameVoxels(serial_layer.map(), side_layer.map());
+  EXPECT_EQ(side_integrator.threads(), 2);  // back to the map's own count
+
+  // A pose outside the bounds: the planning map's error, and the layer's when asked for.
+  const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
+  for (int threads : {1, 2}) {
+    Status layer_status;
+    const Status s = side_layer.integrateDepthWith(&side_integrator, camera, depth, outside, threads, nullptr,
+                                                   &layer_status);
+    EXPECT_NE(s.message().find("outside the map bounds"), std::string::npos) << threads;
+    EXPECT_FALSE(side_layer.integrateDepthWith(&side_integrator, camera, depth, outside, threads).ok()) << threads;
+    if (threads == 2) {
+      EXPECT_FALSE(layer_status.ok());
+    }
+  }
+  expectSameVoxels(serial, side);
+}
+
 TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
   TsdfConfig config = thinWallConfig();
   config.mesh_truncation = 0.2;

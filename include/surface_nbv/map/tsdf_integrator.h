@@ -11,7 +11,8 @@
 // cannot be told from one inside the object, and updating it would thicken
 // convex edges by up to t. Point clouds are integrated by casting each ray through the voxels
 // with the same update, distances measured along the ray.
-// Thread safety: one integration at a time per map; it uses config.threads.
+// Thread safety: one integration at a time per map; it uses config.threads
+// (or setThreads()).
 #pragma once
 
 #include <cmath>
@@ -66,6 +67,9 @@ class TsdfIntegrator {
     if (std::isfinite(scale) && scale > 0.0) weight_scale_ = static_cast<float>(scale);
   }
   float weightScale() const { return weight_scale_; }
+  // Threads of the next integrations; 0 (the default) = the map's config.threads.
+  void setThreads(int threads) { threads_ = threads > 0 ? threads : 0; }
+  int threads() const { return threads_ > 0 ? threads_ : map_->config().threads; }
 
  private:
   // Blocks that can be in view and not hidden behind surfaces, allocated.
@@ -74,6 +78,7 @@ class TsdfIntegrator {
   TsdfMap* map_;
   DepthIndex index_;
   float weight_scale_ = 1.0f;
+  int threads_ = 0;
 };
 
 }  // namespace surface_nbv
