@@ -4,6 +4,7 @@
 // setting (30 m range at 0.3, 0.2 and 0.15 m), free space carved. Where
 // Open3D is installed, its ScalableTSDFVolume integrates the same frames side
 // by side (it only updates the truncation band around surfaces).
+// BM_DepthIndexBuild times the image preparation of each frame on its own.
 // Frames are integrated once before timing, so blocks are allocated and the
 // figures are the steady state of a map that already covers the view.
 #include <benchmark/benchmark.h>
@@ -95,6 +96,21 @@ void BM_Integrate(benchmark::State& state) {
   state.counters["bytes_per_voxel"] = static_cast<double>(map.memoryBytes()) / (map.numBlocks() * kBlockVoxels);
 }
 
+// The per-frame image preparation alone (usable depths, silhouettes, the
+// max-depth pyramid), part of every BM_Integrate frame. Args: {threads}.
+void BM_DepthIndexBuild(benchmark::State& state) {
+  const Frames& f = framesFor(kSettings[0]);
+  const DepthCamera camera(f.camera);
+  DepthIndex index;
+  size_t i = 0, invalid = 0;
+  for (auto _ : state) {
+    invalid += index.build(camera, f.depths[i % f.depths.size()], 0.9f, InvalidPixelPolicy::kClearInfinite,
+                           static_cast<int>(state.range(0)));
+    ++i;
+  }
+  state.counters["invalid_per_frame"] = static_cast<double>(invalid) / state.iterations();
+}
+
 #ifdef NBV_HAVE_OPEN3D
 void BM_IntegrateOpen3D(benchmark::State& state) {
   namespace o3d = open3d;
@@ -136,6 +152,7 @@ void settings(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_Integrate)->Apply(settings);
+BENCHMARK(BM_DepthIndexBuild)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 #ifdef NBV_HAVE_OPEN3D
 BENCHMARK(BM_IntegrateOpen3D)->Apply(settings);
 #endif

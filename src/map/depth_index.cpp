@@ -10,7 +10,31 @@ namespace surface_nbv {
 namespace {
 
 constexpr int kTile = 8;
-constexpr float kNone = -std::numeric_limits<float>::infinity();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kNone = -kInf;
+// The silhouette key of a pixel without usable depth: far beyond any depth,
+// finite, so two such pixels compare equal.
+constexpr float kFar = 1e30f;
+
+// One image row: usable depth (+inf clears, NaN carries nothing), the
+// silhouette key, the farthest reach (max range for clearing pixels, kNone for
+// none) and the number of invalid pixels. Branch-free, so it is vectorised.
+float prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
+                 float* key, float* reach) {
+  float bad = 0.0f;  // exact: whole numbers far below 2^24 (a float sum keeps the loop vectorised)
+  for (int u = 0; u < width; ++u) {
+    const float d = in[u];
+    const bool ok = (d >= lo) & (d <= hi);  // false for NaN
+    const bool clears = (!ok) & (clear_all | (clear_inf & (d > hi)));
+    const float none = clears ? kInf : kNaN;
+    out[u] = ok ? d : none;
+    key[u] = ok ? d : kFar;
+    reach[u] = ok ? d : (clears ? hi : kNone);
+    bad += ok ? 0.0f : 1.0f;
+  }
+  return bad;
+}
 
 }  // namespace
 
@@ -21,52 +45,71 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
   const float max_range = static_cast<float>(camera.config().max_range);
   const bool clear_all = policy == InvalidPixelPolicy::kClearToMaxRange;
   const bool clear_inf = policy == InvalidPixelPolicy::kClearInfinite;
-  const float inf = std::numeric_limits<float>::infinity();
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  usable_.resize(depth.data.size());
-  silhouette_.assign(depth.data.size(), 0);
+  const size_t n = depth.data.size();
+  usable_.resize(n);
+  key_.resize(n);
+  silhouette_.resize(n);
   if (levels_.empty()) levels_.resize(1);
   Level& base = levels_[0];
   base.width = (W + kTile - 1) / kTile;
   base.height = (H + kTile - 1) / kTile;
   base.max_depth.assign(static_cast<size_t>(base.width) * base.height, kNone);
 
-  // Pass 1, by bands of tile rows: usable depth, tile maxima, invalid count.
+  // Pass 1, by bands of tile rows: usable depth, the silhouette key, the
+  // farthest reach of each pixel (max range for cleared ones), tile maxima
+  // and the invalid count. The per-pixel loops have no branches.
   std::vector<size_t> invalid(static_cast<size_t>(base.height), 0);
   parallelFor(static_cast<size_t>(base.height), threads, [&](size_t ty) {
+    // Local copies: the loops store floats and bytes, which could alias captured references.
+    const float lo = min_range, hi = max_range;
+    const bool all = clear_all, infinite = clear_inf;
+    const int width = W;
     const int v_end = std::min(H, static_cast<int>(ty + 1) * kTile);
     float* tile_max = &base.max_depth[ty * base.width];
+    std::vector<float> reach_row(static_cast<size_t>(W));
+    float* reach = reach_row.data();
     for (int v = static_cast<int>(ty) * kTile; v < v_end; ++v) {
-      const float* in = &depth.data[static_cast<size_t>(v) * W];
-      float* out = &usable_[static_cast<size_t>(v) * W];
-      for (int u = 0; u < W; ++u) {
-        const float d = in[u];
-        const bool ok = d >= min_range && d <= max_range;  // false for NaN
-        const bool clears = !ok && (clear_all || (clear_inf && d > max_range));
-        out[u] = ok ? d : clears ? inf : nan;
-        invalid[ty] += ok ? 0 : 1;
-        float& m = tile_max[u / kTile];
-        m = std::max(m, ok ? d : clears ? max_range : kNone);
+      const size_t row = static_cast<size_t>(v) * W;
+      const float* in = &depth.data[row];
+      float* out = &usable_[row];
+      float* key = &key_[row];
+      const float bad = prepareRow(in, lo, hi, all, infinite, width, out, key, reach);
+      invalid[ty] += static_cast<size_t>(bad);
+      for (int u0 = 0, tx = 0; u0 < width; u0 += kTile, ++tx) {
+        const int u1 = std::min(width, u0 + kTile);
+        float m = tile_max[tx];
+        for (int u = u0; u < u1; ++u) m = std::max(m, reach[u]);
+        tile_max[tx] = m;
       }
     }
   });
-  // Pass 2: silhouettes, comparing each pixel with its right and lower neighbours.
-  parallelFor(static_cast<size_t>(H), threads, [&](size_t row) {
-    const int v = static_cast<int>(row);
-    const float* a = &usable_[static_cast<size_t>(v) * W];
-    const float* below = v + 1 < H ? a + W : nullptr;
+  // Pass 2: a pixel is on a silhouette when it differs from one of its four
+  // neighbours: one has a usable depth and the other not, or both have and
+  // are further apart than the truncation. With every pixel without usable
+  // depth keyed kFar, both cases are |key - neighbour's key| > truncation.
+  // Each row is written by one task only.
+  parallelFor(static_cast<size_t>(H), threads, [&](size_t r) {
+    const int v = static_cast<int>(r);
+    const float t = truncation;
+    const int width = W;
+    const float* k = &key_[static_cast<size_t>(v) * W];
+    const float* up = v > 0 ? k - W : k;  // the image border compares a pixel with itself
+    const float* down = v + 1 < H ? k + W : k;
     uint8_t* s = &silhouette_[static_cast<size_t>(v) * W];
-    for (int u = 0; u < W; ++u) {
-      const bool va = std::isfinite(a[u]);
-      if (u + 1 < W) {
-        const bool vb = std::isfinite(a[u + 1]);
-        if (va != vb || (va && std::abs(a[u] - a[u + 1]) > truncation)) s[u] = s[u + 1] = 1;
-      }
-      if (below != nullptr) {
-        const bool vb = std::isfinite(below[u]);
-        if (va != vb || (va && std::abs(a[u] - below[u]) > truncation)) s[u] = s[u + W] = 1;
-      }
+    const auto differs = [&](int u, int left, int right) {
+      const float c = k[u];
+      const float m = std::max(std::max(std::abs(c - k[left]), std::abs(c - k[right])),
+                               std::max(std::abs(c - up[u]), std::abs(c - down[u])));
+      return static_cast<uint8_t>(m > t);
+    };
+    for (int u = 1; u < width - 1; ++u) {  // the same test, written out so that it is vectorised
+      const float c = k[u];
+      const float m = std::max(std::max(std::abs(c - k[u - 1]), std::abs(c - k[u + 1])),
+                               std::max(std::abs(c - up[u]), std::abs(c - down[u])));
+      s[u] = m > t;
     }
+    s[0] = differs(0, 0, std::min(1, W - 1));
+    if (W > 1) s[W - 1] = differs(W - 1, W - 2, W - 1);
   });
   // Pyramid: each level halves the previous one with max.
   size_t k = 1;

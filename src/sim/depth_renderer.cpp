@@ -34,7 +34,10 @@ float noisyDepth(float z, double k, uint64_t seed, uint64_t frame, uint64_t pixe
 }
 
 DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads)
-    : scene_(scene), camera_(camera), threads_(std::max(1, threads)) {}
+    : scene_(scene), camera_(camera), threads_(std::max(1, threads)) {
+  for (int col = 0; col < camera_.width(); ++col) ray_x_.push_back(camera_.pixelRay(col, 0).x());
+  for (int row = 0; row < camera_.height(); ++row) ray_y_.push_back(camera_.pixelRay(0, row).y());
+}
 
 void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t frame_index) const {
   image->resize(camera_.width(), camera_.height());
@@ -64,15 +67,19 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kTileW * kTileH];
 
+  for (int k = 0; k < kTileW * kTileH; ++k) {
+    packet.ray.org_x[k] = static_cast<float>(o.x());
+    packet.ray.org_y[k] = static_cast<float>(o.y());
+    packet.ray.org_z[k] = static_cast<float>(o.z());
+    packet.ray.id[k] = static_cast<unsigned>(k);
+  }
   for (int row0 = row_begin; row0 < row_end; row0 += kTileH) {
     for (int col0 = 0; col0 < width; col0 += kTileW) {
       for (int k = 0; k < kTileW * kTileH; ++k) {
         const int row = row0 + k / kTileW, col = col0 + k % kTileW;
         valid[k] = row < row_end && col < width ? -1 : 0;
-        const Eigen::Vector3d d = R * camera_.pixelRay(std::min(col, width - 1), std::min(row, row_end - 1));
-        packet.ray.org_x[k] = static_cast<float>(o.x());
-        packet.ray.org_y[k] = static_cast<float>(o.y());
-        packet.ray.org_z[k] = static_cast<float>(o.z());
+        const Eigen::Vector3d d =
+            R * Eigen::Vector3d(ray_x_[std::min(col, width - 1)], ray_y_[std::min(row, row_end - 1)], 1.0);
         packet.ray.dir_x[k] = static_cast<float>(d.x());
         packet.ray.dir_y[k] = static_cast<float>(d.y());
         packet.ray.dir_z[k] = static_cast<float>(d.z());
@@ -80,7 +87,6 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
         packet.ray.tfar[k] = max_z;
         packet.ray.time[k] = 0.0f;
         packet.ray.mask[k] = 0xFFFFFFFFu;
-        packet.ray.id[k] = static_cast<unsigned>(k);
         packet.ray.flags[k] = 0;
         packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       }

@@ -37,6 +37,7 @@ class DepthIndex {
     std::vector<float> max_depth;
   };
   std::vector<float> usable_;
+  std::vector<float> key_;  // usable depth, or kFar where there is none (silhouette test)
   std::vector<uint8_t> silhouette_;
   std::vector<Level> levels_;  // levels_[k]: cells of 8 * 2^k pixels
 };

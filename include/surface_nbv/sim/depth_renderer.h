@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "surface_nbv/common.h"
 #include "surface_nbv/sim/depth_camera.h"
@@ -34,6 +35,9 @@ class DepthRenderer {
   const RaycastScene& scene_;
   DepthCamera camera_;
   int threads_;
+  // The camera's pixel rays (x / z per column, y / z per row), as pixelRay()
+  // computes them, so a frame does no divisions.
+  std::vector<double> ray_x_, ray_y_;
 };
 
 // Stereo-like Gaussian depth noise, sigma = k z^2, drawn from a counter-based
