@@ -14,6 +14,8 @@
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/planners/prm/LazyPRMstar.h>
 
+#include "surface_nbv/planning/grid_neighbors.h"
+
 namespace surface_nbv {
 namespace roadmap_detail {
 
@@ -54,7 +56,14 @@ class Roadmap : public og::LazyPRMstar {
   // Query modes: our search, OMPL's search (the reference), or solve() only.
   static constexpr int kFastSearch = 0, kOmplSearch = 1, kGrowOnly = 2;
 
-  explicit Roadmap(const ob::SpaceInformationPtr& si) : og::LazyPRMstar(si) {}
+  // Neighbours come from a grid (grid_neighbors.h) instead of OMPL's GNAT:
+  // the same k nearest, without GNAT's full rebuilds on removals.
+  explicit Roadmap(const ob::SpaceInformationPtr& si) : og::LazyPRMstar(si) {
+    const ob::RealVectorBounds& b = si->getStateSpace()->as<ob::RealVectorStateSpace>()->getBounds();
+    nn_ = std::make_shared<GridNeighbors<Vertex>>([this](const Vertex& v) { return toPoint(stateProperty_[v]); },
+                                                  Eigen::Vector3d(b.low[0], b.low[1], b.low[2]),
+                                                  Eigen::Vector3d(b.high[0], b.high[1], b.high[2]));
+  }
 
   // One source's Dijkstra, resumable (see distanceTo).
   struct Search {
