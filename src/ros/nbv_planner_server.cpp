@@ -252,6 +252,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
 void NbvPlannerServer::hold(const std::string& why) {
   if (have_odometry_) publishTrajectory({uav_});
   have_leg_ = leg_is_spin_ = false;
+  explorer_.legCancelled();  // else, once recovered, it would answer kContinue for the leg the hold cancelled
   if (state_ == State::kRunning || state_ == State::kHovering) state_ = State::kHovering;
   message_ = why;
   stats_.count("holds");

@@ -47,6 +47,20 @@ double wallError(const TriangleMesh& mesh, size_t* vertices) {
   return *vertices > 0 ? sum / *vertices : INFINITY;
 }
 
+// The box scene b holds, ready for ray casting (null if Embree refused it).
+std::unique_ptr<RaycastScene> sceneOf(MeshBuilder* b) {
+  std::unique_ptr<RaycastScene> scene;
+  if (!RaycastScene::create(b->take(), &scene)) scene.reset();
+  return scene;
+}
+
+DepthCamera smallCamera() {
+  CameraConfig cam;
+  cam.width = 160;
+  cam.height = 120;
+  return DepthCamera(cam);
+}
+
 }  // namespace
 
 TEST(MeshLayer, WithoutMeshTruncationItIsThePlanningMap) {
@@ -82,13 +96,9 @@ TEST(MeshLayer, ConfigRefusesAMeshTruncationBelowAVoxel) {
 TEST(MeshLayer, ShorterTruncationKeepsAThinWallsFacesInPlace) {
   MeshBuilder b;
   b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 100.0, 100.0));
-  const TriangleMesh mesh = b.take();
-  std::unique_ptr<RaycastScene> scene;
-  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
-  CameraConfig cam;
-  cam.width = 160;
-  cam.height = 120;
-  const DepthCamera camera(cam);
+  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
 
   TsdfConfig config = thinWallConfig();
@@ -144,13 +154,9 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   MeshBuilder b;
   b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
   b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
-  const TriangleMesh mesh = b.take();
-  std::unique_ptr<RaycastScene> scene;
-  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
-  CameraConfig cam;
-  cam.width = 160;
-  cam.height = 120;
-  const DepthCamera camera(cam);
+  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
   TsdfConfig config = thinWallConfig();
   config.mesh_truncation = 0.2;

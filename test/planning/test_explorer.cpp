@@ -89,6 +89,27 @@ TEST(Explorer, EmptyFirstFrontiersHoverBeforeTheyEndTheMission) {
   EXPECT_EQ(seen.update(Frontier(), kUav, false).action, ExplorerAction::kDone);
 }
 
+// A hold cancels the leg being flown: after legCancelled() the same frontier
+// gives a new leg to the same target, where it would otherwise say kContinue.
+TEST(Explorer, CancelledLegIsPlannedAgainToTheSameTarget) {
+  WallWorld world(true);
+  Explorer explorer(ExplorerConfig(), pathConfig());
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const Frontier f = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
+  const ExplorerDecision first = explorer.update(f, kUav, false);
+  ASSERT_EQ(first.action, ExplorerAction::kFly) << first.message;
+  const Eigen::Vector4d target = explorer.tour().front();
+  const Eigen::Vector4d held(-3.8, -2.5, 2.5, 0.3);  // where the hold left the UAV, short of the target
+  EXPECT_EQ(explorer.update(f, held, false).action, ExplorerAction::kContinue);
+  explorer.legCancelled();
+  EXPECT_FALSE(explorer.hasTarget());
+  const ExplorerDecision again = explorer.update(f, held, false);
+  ASSERT_EQ(again.action, ExplorerAction::kFly) << again.message;
+  EXPECT_EQ(explorer.tour().front(), target);
+  EXPECT_EQ(again.path.back().head<3>(), target.head<3>());
+  EXPECT_EQ(explorer.stats().leg_failures, 0u);
+}
+
 TEST(Explorer, FirstFrontierPlansTheTourAndAFreeLegToItsFirstViewpoint) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());

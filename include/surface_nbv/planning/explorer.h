@@ -181,6 +181,10 @@ class Explorer {
   // Between frontiers: a new leg to the same target if the map now blocks the
   // current one, else kContinue.
   ExplorerDecision checkPath(const Eigen::Vector4d& uav);
+  // The leg to the current target is no longer flown (the UAV was told to
+  // hold): the next update() plans a new leg to the same target instead of
+  // answering kContinue for a leg nobody flies. No failure is counted.
+  void legCancelled() { have_target_ = false, path_.clear(); }
   // The next update() recomputes the whole tour.
   void replan() { tour_.clear(), have_target_ = false, requested_ = true; }
   // Forgets tour, failures and blacklist (the roadmap is kept).
