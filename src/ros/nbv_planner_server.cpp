@@ -249,10 +249,15 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
   publishMarkers();
 }
 
-void NbvPlannerServer::hold(const std::string& why) {
+bool NbvPlannerServer::cancelLeg() {
   if (have_odometry_) publishTrajectory({uav_});
   have_leg_ = leg_is_spin_ = false;
-  explorer_.legCancelled();  // else, once recovered, it would answer kContinue for the leg the hold cancelled
+  explorer_.legCancelled();
+  return have_odometry_;
+}
+
+void NbvPlannerServer::hold(const std::string& why) {
+  cancelLeg();
   if (state_ == State::kRunning || state_ == State::kHovering) state_ = State::kHovering;
   message_ = why;
   stats_.count("holds");
@@ -261,8 +266,7 @@ void NbvPlannerServer::hold(const std::string& why) {
 }
 
 void NbvPlannerServer::finish() {
-  if (have_odometry_) publishTrajectory({uav_});
-  have_leg_ = leg_is_spin_ = false;
+  cancelLeg();
   state_ = State::kDone;
   ROS_INFO("nbv_planner: mission over after %.1f s of flight and %.1f m: %s %s", flightTime(), path_length_,
            reason_.c_str(), message_.c_str());
@@ -458,13 +462,11 @@ bool NbvPlannerServer::onStop(std_srvs::Trigger::Request&, std_srvs::Trigger::Re
   const bool was_done = state_ == State::kDone;
   state_ = was_done ? State::kDone : State::kStopped;
   res.success = true;
-  if (have_odometry_) {
-    publishTrajectory({uav_});
+  if (cancelLeg()) {
     res.message = was_done ? "mission already over; holding the current pose" : "stopped; holding the current pose";
   } else {
     res.message = "stopped; no odometry yet, no hold trajectory sent";
   }
-  have_leg_ = leg_is_spin_ = false;
   explorer_.replan();
   message_ = res.message;
   publishStatus();

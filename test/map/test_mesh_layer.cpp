@@ -54,6 +54,20 @@ std::unique_ptr<RaycastScene> sceneOf(MeshBuilder* b) {
   return scene;
 }
 
+// A planning map with its integrator and a mesh layer of 0.2 m truncation.
+struct LayeredMap {
+  explicit LayeredMap(const TsdfConfig& config) : map(config), integrator(&map), layer(&map) {}
+  TsdfMap map;
+  TsdfIntegrator integrator;
+  MeshLayer layer;
+};
+
+TsdfConfig layeredConfig() {
+  TsdfConfig c = thinWallConfig();
+  c.mesh_truncation = 0.2;
+  return c;
+}
+
 DepthCamera smallCamera() {
   CameraConfig cam;
   cam.width = 160;
@@ -101,25 +115,21 @@ TEST(MeshLayer, ShorterTruncationKeepsAThinWallsFacesInPlace) {
   const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
 
-  TsdfConfig config = thinWallConfig();
-  config.mesh_truncation = 0.2;
-  TsdfMap planning(config);
-  TsdfIntegrator integrator(&planning);
-  MeshLayer layer(&planning);
-  ASSERT_TRUE(layer.separate());
+  LayeredMap m(layeredConfig());
+  ASSERT_TRUE(m.layer.separate());
   DepthImage depth;
   for (int k = 0; k < 4; ++k) {  // alternate sides, several distances
     for (double dir : {1.0, -1.0}) {
       const double x = dir > 0 ? 2.0 + 0.3 * k : 8.2 - 0.3 * k;
       const Transform T = lookingAlongX(Eigen::Vector3d(x, 0.05 * k, 0.0), dir);
       renderer.render(T, &depth);
-      ASSERT_TRUE(integrator.integrateDepth(camera, depth, T).ok());
-      ASSERT_TRUE(layer.integrateDepth(camera, depth, T).ok());
+      ASSERT_TRUE(m.integrator.integrateDepth(camera, depth, T).ok());
+      ASSERT_TRUE(m.layer.integrateDepth(camera, depth, T).ok());
     }
   }
   MeshExtractor planning_mesh, layer_mesh;
-  planning_mesh.update(planning);
-  layer_mesh.update(layer.map());
+  planning_mesh.update(m.map);
+  layer_mesh.update(m.layer.map());
   size_t n_planning = 0, n_layer = 0;
   const double e_planning = wallError(planning_mesh.mesh(), &n_planning);
   const double e_layer = wallError(layer_mesh.mesh(), &n_layer);
@@ -158,46 +168,41 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   ASSERT_NE(scene, nullptr);
   const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
-  TsdfConfig config = thinWallConfig();
-  config.mesh_truncation = 0.2;
+  TsdfConfig config = layeredConfig();
   config.threads = 2;
-  TsdfMap serial(config), side(config);
-  TsdfIntegrator serial_integrator(&serial), side_integrator(&side);
-  MeshLayer serial_layer(&serial), side_layer(&side);
+  LayeredMap serial(config), side(config);
   DepthImage depth;
   for (int k = 0; k < 6; ++k) {
     const double dir = k % 2 == 0 ? 1.0 : -1.0;
     const Transform T = lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
     renderer.render(T, &depth);
     IntegrationStats stats;
-    ASSERT_TRUE(serial_layer.integrateDepthWith(&serial_integrator, camera, depth, T, 1).ok());
-    ASSERT_TRUE(side_layer.integrateDepthWith(&side_integrator, camera, depth, T, 2, &stats).ok());
+    ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
+    ASSERT_TRUE(side.layer.integrateDepthWith(&side.integrator, camera, depth, T, 2, &stats).ok());
     EXPECT_GT(stats.voxels_updated, 0u);
   }
-  EXPECT_GT(serial.numBlocks(), 10u);
-  expectSameVoxels(serial, side);
-  expectSameVoxels(serial_layer.map(), side_layer.map());
-  EXPECT_EQ(side_integrator.threads(), 2);  // back to the map's own count
+  EXPECT_GT(serial.map.numBlocks(), 10u);
+  expectSameVoxels(serial.map, side.map);
+  expectSameVoxels(serial.layer.map(), side.layer.map());
+  EXPECT_EQ(side.integrator.threads(), 2);  // back to the map's own count
 
   // A pose outside the bounds: the planning map's error, and the layer's when asked for.
   const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
   for (int threads : {1, 2}) {
     Status layer_status;
-    const Status s = side_layer.integrateDepthWith(&side_integrator, camera, depth, outside, threads, nullptr,
+    const Status s = side.layer.integrateDepthWith(&side.integrator, camera, depth, outside, threads, nullptr,
                                                    &layer_status);
     EXPECT_NE(s.message().find("outside the map bounds"), std::string::npos) << threads;
-    EXPECT_FALSE(side_layer.integrateDepthWith(&side_integrator, camera, depth, outside, threads).ok()) << threads;
+    EXPECT_FALSE(side.layer.integrateDepthWith(&side.integrator, camera, depth, outside, threads).ok()) << threads;
     if (threads == 2) {
       EXPECT_FALSE(layer_status.ok());
     }
   }
-  expectSameVoxels(serial, side);
+  expectSameVoxels(serial.map, side.map);
 }
 
 TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
-  TsdfConfig config = thinWallConfig();
-  config.mesh_truncation = 0.2;
-  TsdfMap planning(config);
+  TsdfMap planning(layeredConfig());
   TsdfIntegrator integrator(&planning);
   ASSERT_TRUE(integrator.markFree(Eigen::Vector3d(3, 0, 0), 0.8).ok());
   const std::string path = (std::filesystem::temp_directory_path() / "mesh_layer_reload.tsdf").string();

@@ -66,6 +66,10 @@ class NbvPlannerServer {
   void act(const ExplorerDecision& d);
   // Holds the current pose; HOVERING (or keeps STOPPED / DONE) with `why`.
   void hold(const std::string& why);
+  // Sends a hold at the UAV's pose (false without odometry: nothing sent) and
+  // forgets the leg it was flying, here and in the explorer, so the next
+  // decision plans a new one instead of continuing a leg nobody flies.
+  bool cancelLeg();
   // Holds, DONE, the report, the map and mesh; reason_ and message_ say why.
   void finish();
   // s of odometry time since the first odometry of the mission, 0 before it.
