@@ -6,6 +6,7 @@
 //
 //   nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]
 //              [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]
+//              [--observed]
 //
 // PATH.csv is nbv_mission's trial_K/path.csv: header t_s,x_m,y_m,z_m,yaw_rad,
 // one base_link pose per integrated depth frame. Every frame is fused as
@@ -14,7 +15,10 @@
 // trial's config and seed the result is that trial's reconstruction.
 // Writes DIR/reconstruction.ply, DIR/eval/ (nbv_evaluate's report) and
 // DIR/refuse.json (inputs, effective parameters and results). Exit code 2 on
-// any bad input.
+// any bad input. --observed also measures what the camera saw, whatever the
+// fusion: the share of the visible ground truth within e_max of a measured
+// depth point (every 4th pixel of every frame, kept once per 5 cm cell), the
+// bound any fusion of this flight could reach.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +28,7 @@
 #include <iostream>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/eval/report_writer.h"
@@ -46,11 +51,12 @@ using Clock = std::chrono::steady_clock;
 const char* kUsage =
     "usage: nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]\n"
     "                  [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]\n"
-    "                  [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
+    "                  [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--observed]\n"
     "  Re-fuses the poses of PATH.csv (nbv_mission's trial_K/path.csv) with the config's TSDF parameters,\n"
     "  meshes and evaluates the result. --config defaults to config/<scene name>.yaml of the package when it\n"
     "  exists; --seed is the mission seed of the trial (camera noise seed = camera.noise_seed + S, default 1);\n"
-    "  --out defaults to output/refuse_<scene name>.\n";
+    "  --out defaults to output/refuse_<scene name>. --observed also reports the coverage of the measured depth\n"
+    "  points themselves (what the camera saw, whatever the fusion).\n";
 
 const char* kHeader = "t_s,x_m,y_m,z_m,yaw_rad";
 
@@ -128,6 +134,49 @@ Status readPath(const std::string& file, std::vector<PathRow>* rows) {
 
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The measured depth points of a flight, kept once per cubic cell.
+class ObservedCells {
+ public:
+  static constexpr double kCell = 0.05;  // [m]
+  static constexpr int kPixelStep = 4;
+
+  void add(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
+    for (int r = 0; r < depth.height; r += kPixelStep) {
+      for (int c = 0; c < depth.width; c += kPixelStep) {
+        const float z = depth.at(r, c);
+        if (!std::isfinite(z) || !camera.depthInRange(z)) continue;
+        const Eigen::Vector3d p = T_W_C * (camera.pixelRay(c, r) * static_cast<double>(z));
+        cells_.insert(key(p));
+      }
+    }
+  }
+  size_t size() const { return cells_.size(); }
+  // Cell centres.
+  std::vector<Eigen::Vector3f> points() const {
+    std::vector<Eigen::Vector3f> out;
+    out.reserve(cells_.size());
+    for (uint64_t k : cells_) {
+      const auto axis = [&](int shift) {
+        return static_cast<float>(((static_cast<int64_t>((k >> shift) & 0x1fffff)) - kBias + 0.5) * kCell);
+      };
+      out.emplace_back(axis(0), axis(21), axis(42));
+    }
+    return out;
+  }
+
+ private:
+  static constexpr int64_t kBias = 1 << 20;  // 21 bits per axis: +-52 km at 5 cm
+  static uint64_t key(const Eigen::Vector3d& p) {
+    uint64_t k = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int64_t i = static_cast<int64_t>(std::floor(p[a] / kCell)) + kBias;
+      k |= static_cast<uint64_t>(std::clamp<int64_t>(i, 0, 0x1fffff)) << (21 * a);
+    }
+    return k;
+  }
+  std::unordered_set<uint64_t> cells_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,7 +184,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(),
                  {"path", "config", "truncation", "mesh-truncation", "mesh-min-weight", "seed", "threads", "out"});
-  CliArgs args(options, {"help"});
+  CliArgs args(options, {"help", "observed"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
   if (help) return 0;
@@ -208,11 +257,14 @@ int main(int argc, char** argv) {
   }
   const auto fuse0 = Clock::now();
   DepthImage depth;
+  const bool observe = args.has("observed");
+  ObservedCells observed;
   int reported_tenths = 0;
   for (size_t i = 0; i < rows.size(); ++i) {
     const PathRow& row = rows[i];
     const Transform T_W_C = levelBodyPose(row.p_W, row.yaw) * T_B_C;
     renderer.render(T_W_C, &depth, i);
+    if (observe) observed.add(camera, depth, T_W_C);
     const Status fused = mesh_layer.integrateDepthWith(&integrator, camera, depth, T_W_C, config.threads);
     if (!fused) {
       return fail(path_file + ":" + std::to_string(row.line) + ": integration of frame " + std::to_string(i) +
@@ -242,6 +294,26 @@ int main(int argc, char** argv) {
   EvalResult eval;
   if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
   if (Status s = ReportWriter(eval, {ply, config.scene.scene}).write(out_dir + "/eval"); !s) return fail(s.message());
+  double observed_coverage = -1.0;
+  size_t seen_not_meshed = 0, meshed_not_seen = 0;
+  if (observe) {
+    const std::vector<Eigen::Vector3f> points = observed.points();
+    const PointIndex index(points);
+    const CoverageResult seen =
+        computeCoverage(eval.ground_truth, eval.visible, index, eval_config.eMax(), config.threads);
+    observed_coverage = seen.coverage();
+    // Seen but not in the mesh (what fusion and meshing lose), and the reverse.
+    for (size_t i = 0; i < eval.ground_truth.size(); ++i) {
+      if (!eval.visible[i]) continue;
+      seen_not_meshed += seen.covered[i] && !eval.coverage.covered[i];
+      meshed_not_seen += !seen.covered[i] && eval.coverage.covered[i];
+    }
+    const double visible = std::max<size_t>(1, eval.numVisible());
+    std::printf("observed: %zu cells of %.0f cm hold %.2f %% of the visible ground truth within e_max; "
+                "%.2f %% seen but not covered by the mesh, %.2f %% covered but not seen\n",
+                points.size(), 100.0 * ObservedCells::kCell, 100.0 * observed_coverage,
+                100.0 * seen_not_meshed / visible, 100.0 * meshed_not_seen / visible);
+  }
   const double wall_s = secondsSince(wall0);
 
   JsonWriter json;
@@ -254,6 +326,11 @@ int main(int argc, char** argv) {
   json.value("frames", rows.size()).value("triangles", reconstruction.numTriangles());
   json.value("e_max_m", eval_config.eMax()).value("coverage", eval.coverage.coverage());
   json.value("error_mean_m", eval.error_stats.mean).value("error_std_m", eval.error_stats.std_dev);
+  if (observe) {
+    const double visible = std::max<size_t>(1, eval.numVisible());
+    json.value("observed_coverage", observed_coverage).value("observed_cells", observed.size());
+    json.value("seen_not_meshed", seen_not_meshed / visible).value("meshed_not_seen", meshed_not_seen / visible);
+  }
   json.value("rmse_m", eval.error_stats.rmse).value("fuse_s", fuse_s).value("wall_s", wall_s).endObject();
   std::ofstream out(out_dir + "/refuse.json");
   out << json.str();

@@ -1,6 +1,7 @@
 // nbv_refuse, the command-line re-fusion of a recorded flight: a circle of
 // poses around the box scene fused and evaluated, the mesh layer's
-// truncation changing the mesh, and every kind of bad input refused with
+// truncation changing the mesh, the coverage of what the camera saw
+// (--observed), and every kind of bad input refused with
 // exit code 2 and a message naming it.
 #include <gtest/gtest.h>
 
@@ -108,6 +109,33 @@ TEST_F(NbvRefuse, FusesACircleAroundTheBoxAndEvaluatesIt) {
   // A noiseless camera on flat walls: the 10 cm voxels' discretisation only
   // (measured RMSE 1.45 cm, e_max 8.7 cm).
   EXPECT_LT(jsonNumber(json, "rmse_m"), 0.025) << json;
+}
+
+TEST_F(NbvRefuse, ObservedCoverageIsWhatTheCameraSaw) {
+  ASSERT_TRUE(fs::exists(exe_)) << exe_;
+  const std::string path = circlePath();
+  const std::string common = "--scene box --config " + config_ + " --path " + path;
+  const fs::path plain = dir_ / "plain", observed = dir_ / "observed";
+  ASSERT_EQ(run(common + " --out " + plain.string()).code, 0);
+  EXPECT_EQ(readText(plain / "refuse.json").find("observed_coverage"), std::string::npos);
+  const ToolRun r = run(common + " --observed --out " + observed.string());
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("observed: "), std::string::npos) << r.out;
+  const std::string json = readText(observed / "refuse.json");
+  // The circle sees the four sides whole (80 % of the visible 80 m^2) and of
+  // the top only what lies within e_max (8.7 cm) of the sides' top edges
+  // (measured 81.97 %).
+  const double seen = jsonNumber(json, "observed_coverage");
+  EXPECT_GT(seen, 0.795) << json;
+  EXPECT_LT(seen, 0.83) << json;
+  EXPECT_GT(jsonNumber(json, "observed_cells"), 10000) << json;
+  // The mesh's coverage is what was seen, less what the mesh lost, plus
+  // what it covers unseen (the meshed rim of the top).
+  const double coverage = jsonNumber(json, "coverage");
+  EXPECT_NEAR(coverage, seen - jsonNumber(json, "seen_not_meshed") + jsonNumber(json, "meshed_not_seen"), 1e-6);
+  EXPECT_GT(jsonNumber(json, "meshed_not_seen"), 0.0) << json;
+  // The fusion does not change: the same mesh as without --observed.
+  EXPECT_DOUBLE_EQ(coverage, jsonNumber(readText(plain / "refuse.json"), "coverage"));
 }
 
 TEST_F(NbvRefuse, TheMeshTruncationChangesTheMesh) {
