@@ -36,6 +36,7 @@
 #include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/sim/depth_points.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/sim/scripted_flight.h"
@@ -141,13 +142,9 @@ class ObservedCells {
   static constexpr int kPixelStep = 4;
 
   void add(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
-    for (int r = 0; r < depth.height; r += kPixelStep) {
-      for (int c = 0; c < depth.width; c += kPixelStep) {
-        const float z = depth.at(r, c);
-        if (!std::isfinite(z) || !camera.depthInRange(z)) continue;
-        const Eigen::Vector3d p = T_W_C * (camera.pixelRay(c, r) * static_cast<double>(z));
-        cells_.insert(key(p));
-      }
+    depthToPoints(camera, depth, &points_C_, kPixelStep);
+    for (const Eigen::Vector3f& p_C : points_C_) {
+      if (camera.depthInRange(p_C.z())) cells_.insert(key(T_W_C * p_C.cast<double>()));
     }
   }
   size_t size() const { return cells_.size(); }
@@ -175,6 +172,7 @@ class ObservedCells {
     return k;
   }
   std::unordered_set<uint64_t> cells_;
+  std::vector<Eigen::Vector3f> points_C_;  // one frame's points, kept between frames
 };
 
 }  // namespace
@@ -294,8 +292,7 @@ int main(int argc, char** argv) {
   EvalResult eval;
   if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
   if (Status s = ReportWriter(eval, {ply, config.scene.scene}).write(out_dir + "/eval"); !s) return fail(s.message());
-  double observed_coverage = -1.0;
-  size_t seen_not_meshed = 0, meshed_not_seen = 0;
+  double observed_coverage = -1.0, seen_not_meshed = 0.0, meshed_not_seen = 0.0;  // shares of the visible samples
   if (observe) {
     const std::vector<Eigen::Vector3f> points = observed.points();
     const PointIndex index(points);
@@ -303,16 +300,16 @@ int main(int argc, char** argv) {
         computeCoverage(eval.ground_truth, eval.visible, index, eval_config.eMax(), config.threads);
     observed_coverage = seen.coverage();
     // Seen but not in the mesh (what fusion and meshing lose), and the reverse.
+    const double share = 1.0 / std::max<size_t>(1, eval.numVisible());
     for (size_t i = 0; i < eval.ground_truth.size(); ++i) {
       if (!eval.visible[i]) continue;
-      seen_not_meshed += seen.covered[i] && !eval.coverage.covered[i];
-      meshed_not_seen += !seen.covered[i] && eval.coverage.covered[i];
+      if (seen.covered[i] && !eval.coverage.covered[i]) seen_not_meshed += share;
+      if (!seen.covered[i] && eval.coverage.covered[i]) meshed_not_seen += share;
     }
-    const double visible = std::max<size_t>(1, eval.numVisible());
     std::printf("observed: %zu cells of %.0f cm hold %.2f %% of the visible ground truth within e_max; "
                 "%.2f %% seen but not covered by the mesh, %.2f %% covered but not seen\n",
                 points.size(), 100.0 * ObservedCells::kCell, 100.0 * observed_coverage,
-                100.0 * seen_not_meshed / visible, 100.0 * meshed_not_seen / visible);
+                100.0 * seen_not_meshed, 100.0 * meshed_not_seen);
   }
   const double wall_s = secondsSince(wall0);
 
@@ -327,9 +324,8 @@ int main(int argc, char** argv) {
   json.value("e_max_m", eval_config.eMax()).value("coverage", eval.coverage.coverage());
   json.value("error_mean_m", eval.error_stats.mean).value("error_std_m", eval.error_stats.std_dev);
   if (observe) {
-    const double visible = std::max<size_t>(1, eval.numVisible());
     json.value("observed_coverage", observed_coverage).value("observed_cells", observed.size());
-    json.value("seen_not_meshed", seen_not_meshed / visible).value("meshed_not_seen", meshed_not_seen / visible);
+    json.value("seen_not_meshed", seen_not_meshed).value("meshed_not_seen", meshed_not_seen);
   }
   json.value("rmse_m", eval.error_stats.rmse).value("fuse_s", fuse_s).value("wall_s", wall_s).endObject();
   std::ofstream out(out_dir + "/refuse.json");

@@ -56,6 +56,12 @@ void expectFree(const CollisionMap& map, const std::vector<Eigen::Vector4d>& pat
 
 const Eigen::Vector4d kUav(-4.0, -3.0, 2.5, 0.0);
 
+// Two clusters of two ISEs: a near one on the UAV's side of the WallWorld
+// wall and a far one behind it.
+Frontier nearAndBehindTheWall() {
+  return makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
+}
+
 TEST(Explorer, CompleteFrontierEndsTheMission) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());
@@ -95,7 +101,7 @@ TEST(Explorer, CancelledLegIsPlannedAgainToTheSameTarget) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());
   ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  const Frontier f = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
+  const Frontier f = nearAndBehindTheWall();
   const ExplorerDecision first = explorer.update(f, kUav, false);
   ASSERT_EQ(first.action, ExplorerAction::kFly) << first.message;
   const Eigen::Vector4d target = explorer.tour().front();
@@ -114,8 +120,7 @@ TEST(Explorer, FirstFrontierPlansTheTourAndAFreeLegToItsFirstViewpoint) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());
   ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  // Near cluster on this side of the wall, far cluster behind it.
-  const Frontier f = makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
+  const Frontier f = nearAndBehindTheWall();
   const ExplorerDecision d = explorer.update(f, kUav, false);
   ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
   EXPECT_EQ(d.reason, ReplanReason::kInitial);
