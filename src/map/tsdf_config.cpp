@@ -25,6 +25,8 @@ TsdfConfig TsdfConfig::meshLayerConfig() const {
   TsdfConfig c = *this;
   c.truncation = mesh_truncation;
   c.mesh_truncation = 0.0;
+  c.weight_dropoff = mesh_weight_dropoff;
+  c.mesh_weight_dropoff = false;
   return c;
 }
 
@@ -35,6 +37,9 @@ Status TsdfConfig::validate() const {
   if (!std::isfinite(mesh_truncation) || mesh_truncation < 0.0 ||
       (mesh_truncation > 0.0 && mesh_truncation < voxel_size)) {
     return Status::Error("mesh_truncation expected 0 (mesh the map itself) or >= voxel_size");
+  }
+  if (mesh_weight_dropoff && mesh_truncation <= 0.0) {
+    return Status::Error("mesh_weight_dropoff needs a mesh layer (mesh_truncation > 0)");
   }
   if (!std::isfinite(w_th) || w_th <= 0.0f) return Status::Error("w_th expected > 0");
   if (!std::isfinite(mesh_min_weight)) return Status::Error("mesh_min_weight expected finite (< 0 selects w_th)");

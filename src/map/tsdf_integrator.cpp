@@ -10,6 +10,21 @@
 namespace surface_nbv {
 namespace {
 
+// The share of an update's weight kept with TsdfConfig::weight_dropoff: 1
+// down to sdf = -voxel_size, then falling linearly to 0 at -truncation.
+struct Dropoff {
+  bool on = false;
+  float start = 0.0f, trunc = 0.0f, scale = 0.0f;
+
+  explicit Dropoff(const TsdfConfig& c)
+      : on(c.weight_dropoff),
+        start(static_cast<float>(c.voxel_size)),
+        trunc(static_cast<float>(c.truncationDistance())),
+        scale(c.truncationDistance() > c.voxel_size ? static_cast<float>(1.0 / (c.truncationDistance() - c.voxel_size))
+                                                    : 0.0f) {}
+  float share(float sdf) const { return on && sdf < -start ? (trunc + sdf) * scale : 1.0f; }
+};
+
 void updateVoxel(TsdfVoxel* v, float sdf, float weight, float max_weight) {
   const float w = v->w + weight;
   v->phi = (v->phi * v->w + sdf * weight) / w;
@@ -138,6 +153,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float cx = static_cast<float>(camera.cx()) + 0.5f, cy = static_cast<float>(camera.cy()) + 0.5f;
   const float max_weight = cfg.max_weight;
   const float frame_weight = weight_scale_;
+  const Dropoff dropoff(cfg);
   const float* usable = index_.usableData();
   const uint8_t* silhouette = index_.silhouetteData();
   std::vector<size_t> updated(work.size(), 0);
@@ -160,7 +176,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
           if (!(uf >= 0.0f && uf < W && vf >= 0.0f && vf < H)) continue;
           const size_t pixel = static_cast<size_t>(vf) * W + static_cast<size_t>(uf);
           const float d = usable[pixel];
-          float sdf;
+          float sdf, weight = frame_weight * inv_z * inv_z;
           if (std::isinf(d)) {
             if (z > max_range) continue;
             sdf = trunc;
@@ -168,8 +184,12 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
             sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
             if (!(sdf >= -trunc) || (sdf < 0.0f && silhouette[pixel])) continue;
             sdf = std::min(sdf, trunc);
+            if (dropoff.on) {
+              weight *= dropoff.share(sdf);
+              if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
+            }
           }
-          updateVoxel(&vox[i], sdf, frame_weight * inv_z * inv_z, max_weight);
+          updateVoxel(&vox[i], sdf, weight, max_weight);
           ++n;
         }
       }
@@ -239,6 +259,7 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     }
   }
   const uint64_t stamp = map_->beginChange();
+  const Dropoff dropoff(cfg);
   for (const auto& kv : touched) {
     const int64_t k = kv.first;
     const Eigen::Vector3i v(static_cast<int>(k % grid.x()), static_cast<int>((k / grid.x()) % grid.y()),
@@ -250,8 +271,10 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     }
     const Eigen::Vector3i l = TsdfMap::localOfVoxel(v);
     const double dist = std::max(kv.second.dist, 1e-3);
-    updateVoxel(&b->at(l.x(), l.y(), l.z()), static_cast<float>(kv.second.sdf_sum / kv.second.count),
-                static_cast<float>(weight_scale_ / (dist * dist)), cfg.max_weight);
+    const float sdf = static_cast<float>(kv.second.sdf_sum / kv.second.count);
+    const float weight = static_cast<float>(weight_scale_ / (dist * dist)) * dropoff.share(sdf);
+    if (!(weight > 0.0f)) continue;
+    updateVoxel(&b->at(l.x(), l.y(), l.z()), sdf, weight, cfg.max_weight);
     b->change_stamp = stamp;
     ++stats.voxels_updated;
   }

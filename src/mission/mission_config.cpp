@@ -119,6 +119,8 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   c->tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
   nbv.get("truncation", &c->tsdf.truncation);
   nbv.get("mesh_truncation", &c->tsdf.mesh_truncation);
+  nbv.get("weight_dropoff", &c->tsdf.weight_dropoff);
+  nbv.get("mesh_weight_dropoff", &c->tsdf.mesh_weight_dropoff);
   nbv.getVector("bounds_min", &c->tsdf.bounds.min);
   nbv.getVector("bounds_max", &c->tsdf.bounds.max);
   YamlSection cam = nbv.child("camera");

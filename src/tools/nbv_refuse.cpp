@@ -5,8 +5,8 @@
 // mission changes chaotically with any change of the map).
 //
 //   nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]
-//              [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]
-//              [--observed]
+//              [--mesh-truncation M] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W] [--seed S]
+//              [--threads N] [--out DIR] [--observed]
 //
 // PATH.csv is nbv_mission's trial_K/path.csv: header t_s,x_m,y_m,z_m,yaw_rad,
 // one base_link pose per integrated depth frame. Every frame is fused as
@@ -51,7 +51,8 @@ using Clock = std::chrono::steady_clock;
 
 const char* kUsage =
     "usage: nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]\n"
-    "                  [--mesh-truncation M] [--mesh-min-weight W] [--seed S] [--threads N] [--out DIR]\n"
+    "                  [--mesh-truncation M] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W] [--seed S]\n"
+    "                  [--threads N] [--out DIR]\n"
     "                  [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--observed]\n"
     "  Re-fuses the poses of PATH.csv (nbv_mission's trial_K/path.csv) with the config's TSDF parameters,\n"
     "  meshes and evaluates the result. --config defaults to config/<scene name>.yaml of the package when it\n"
@@ -181,7 +182,8 @@ int main(int argc, char** argv) {
   const auto wall0 = Clock::now();
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(),
-                 {"path", "config", "truncation", "mesh-truncation", "mesh-min-weight", "seed", "threads", "out"});
+                 {"path", "config", "truncation", "mesh-truncation", "mesh-weight-dropoff", "mesh-min-weight", "seed",
+                  "threads", "out"});
   CliArgs args(options, {"help", "observed"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -192,23 +194,26 @@ int main(int argc, char** argv) {
   MissionConfig config;
   std::string config_file;
   if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());
-  int seed = 1;
+  int seed = 1, dropoff = config.tsdf.mesh_weight_dropoff ? 1 : 0;
   double mesh_min_weight = config.tsdf.mesh_min_weight;
   const Status parsed[] = {args.getDouble("truncation", &config.tsdf.truncation),
                            args.getDouble("mesh-truncation", &config.tsdf.mesh_truncation),
+                           args.getInt("mesh-weight-dropoff", &dropoff),
                            args.getDouble("mesh-min-weight", &mesh_min_weight), args.getInt("seed", &seed),
                            args.getInt("threads", &config.threads)};
   for (const Status& s : parsed)
     if (!s) return fail(s.message());
   if (seed < 0) return fail("--seed expects an integer >= 0");
+  if (dropoff != 0 && dropoff != 1) return fail("--mesh-weight-dropoff expects 0 or 1");
+  config.tsdf.mesh_weight_dropoff = dropoff == 1;
   if (!(std::abs(mesh_min_weight) <= std::numeric_limits<float>::max())) {
     return fail("--mesh-min-weight expects a finite number (< 0 selects w_th)");
   }
   config.tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
   config.seed = static_cast<unsigned>(seed);
   if (Status s = config.validate(); !s) {
-    const bool overridden = args.has("truncation") || args.has("mesh-truncation") || args.has("mesh-min-weight") ||
-                            args.has("threads");
+    const bool overridden = args.has("truncation") || args.has("mesh-truncation") ||
+                            args.has("mesh-weight-dropoff") || args.has("mesh-min-weight") || args.has("threads");
     const std::string source = config_file.empty() ? "default config" : config_file;
     return fail(source + (overridden ? " with the command-line overrides" : "") + ": " + s.message());
   }
@@ -240,11 +245,12 @@ int main(int argc, char** argv) {
   const DepthRenderer renderer(*scene, camera, config.threads);
   const Transform T_B_C = opticalInBody();
   const TsdfConfig& meshed = mesh_layer.map().config();
-  std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh truncation %.3f m%s, "
+  std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh truncation %.3f m%s%s, "
               "mesh_min_weight %g; %zu frames from %s (seed %d)\n",
               config.scene.scene.c_str(), mesh.numTriangles(), config_file.empty() ? "(defaults)" : config_file.c_str(),
               tsdf.voxel_size, tsdf.truncationDistance(), meshed.truncationDistance(),
-              mesh_layer.separate() ? " (separate layer)" : " (the map itself)", meshed.mesh_min_weight, rows.size(),
+              mesh_layer.separate() ? " (separate layer)" : " (the map itself)",
+              meshed.weight_dropoff ? ", weight drop-off" : "", meshed.mesh_min_weight, rows.size(),
               path_file.c_str(), seed);
   std::fflush(stdout);
 
@@ -317,7 +323,7 @@ int main(int argc, char** argv) {
   json.beginObject().value("path", path_file).value("scene", config.scene.scene).value("config", config_file);
   json.value("seed", seed).value("threads", config.threads).value("voxel_size_m", tsdf.voxel_size);
   json.value("truncation_m", tsdf.truncationDistance()).value("mesh_layer", mesh_layer.separate());
-  json.value("mesh_truncation_m", meshed.truncationDistance());
+  json.value("mesh_truncation_m", meshed.truncationDistance()).value("mesh_weight_dropoff", meshed.weight_dropoff);
   json.value("mesh_min_weight", static_cast<double>(meshed.mesh_min_weight));
   json.value("w_th", static_cast<double>(tsdf.w_th)).value("weight_scale", integrator.weightScale());
   json.value("frames", rows.size()).value("triangles", reconstruction.numTriangles());

@@ -104,6 +104,25 @@ TEST(MeshLayer, ConfigRefusesAMeshTruncationBelowAVoxel) {
   EXPECT_FALSE(m.hasMeshLayer());
 }
 
+// A weight drop-off for the mesh alone asks for a layer of its own, even at
+// the map's truncation; without a layer there is nothing to apply it to.
+TEST(MeshLayer, WeightDropoffOfTheMeshAloneMakesALayer) {
+  TsdfConfig c = thinWallConfig();
+  c.mesh_truncation = c.truncationDistance();
+  c.mesh_weight_dropoff = true;
+  ASSERT_TRUE(c.validate().ok()) << c.validate().message();
+  TsdfMap planning(c);
+  MeshLayer layer(&planning);
+  ASSERT_TRUE(layer.separate());
+  EXPECT_TRUE(layer.map().config().weight_dropoff);
+  EXPECT_FALSE(layer.map().config().mesh_weight_dropoff);
+  EXPECT_FALSE(planning.config().weight_dropoff);  // planning keeps full weights
+  EXPECT_DOUBLE_EQ(layer.map().config().truncationDistance(), c.truncationDistance());
+  c.mesh_truncation = 0.0;
+  EXPECT_NE(c.validate().message().find("mesh_weight_dropoff needs a mesh layer"), std::string::npos)
+      << c.validate().message();
+}
+
 // A wall thinner than the truncation, seen from both sides: the planning
 // map's negative band from each side reaches through to the other face and
 // moves both; the layer with 2 voxels keeps the faces where they are.

@@ -92,6 +92,45 @@ TEST(TsdfIntegrator, WallPhiIsExactAndWeightsSumInverseSquares) {
   EXPECT_EQ(checked, 54);  // 3 rows x 18 voxels in front of or at the wall
 }
 
+// With weight_dropoff, an update behind the wall keeps its full weight down
+// to one voxel behind, then (t + sdf) / (t - voxel) of it, nothing at -t;
+// the distances are the same as without, and so is everything in front.
+TEST(TsdfIntegrator, WeightDropsOffBehindTheSurface) {
+  WallWorld world;
+  TsdfConfig config = wallConfig();
+  config.weight_dropoff = true;
+  TsdfMap plain_map(wallConfig()), dropped_map(config);
+  TsdfIntegrator plain(&plain_map), dropped(&dropped_map);
+  const DepthCamera camera(world.camera_config);
+  const Transform T = lookingAlongX(Eigen::Vector3d(1.0, 0.0, 0.0));
+  const DepthImage depth = world.render(T);
+  ASSERT_TRUE(plain.integrateDepth(camera, depth, T).ok());
+  ASSERT_TRUE(dropped.integrateDepth(camera, depth, T).ok());
+  const double trunc = config.truncationDistance(), voxel = config.voxel_size;
+  int behind = 0, full = 0;
+  for (double xc = 2.1; xc < 7.9; xc += 0.2) {
+    Eigen::Vector3i v;
+    ASSERT_TRUE(plain_map.voxelIndex(Eigen::Vector3d(xc, 0.1, 0.1), &v));
+    const double sdf = world.wall_x - plain_map.voxelCenter(v).x();
+    const TsdfVoxel* a = plain_map.voxel(v);
+    const TsdfVoxel* b = dropped_map.voxel(v);
+    if (sdf <= -trunc + 1e-6) {  // nothing left at -t, nothing at all beyond
+      EXPECT_TRUE(b == nullptr || b->w == 0.0f) << xc;
+      continue;
+    }
+    ASSERT_NE(a, nullptr) << xc;
+    ASSERT_NE(b, nullptr) << xc;
+    EXPECT_FLOAT_EQ(b->phi, a->phi) << xc;
+    const double share = sdf < -voxel ? (trunc + sdf) / (trunc - voxel) : 1.0;
+    EXPECT_NEAR(b->w, a->w * share, 1e-5 * a->w) << xc;
+    (share < 1.0 ? behind : full) += 1;
+  }
+  EXPECT_EQ(behind, 2);  // 0.3 and 0.5 m behind the wall (t = 0.6 m)
+  EXPECT_GE(full, 15);
+  // Off by default: the same map as before.
+  EXPECT_FALSE(TsdfConfig().weight_dropoff);
+}
+
 TEST(TsdfIntegrator, StatesAfterRepeatedViews) {
   WallWorld world;
   TsdfMap map(wallConfig());

@@ -29,6 +29,16 @@ struct TsdfConfig {
   // Truncation of the mesh layer, a second TSDF fused from the same frames
   // that the reconstruction mesh comes from (mesh_layer.h); 0 meshes this map.
   double mesh_truncation = 0.0;
+  // Weight drop-off behind surfaces: an update with sdf < -voxel_size counts
+  // (t + sdf) / (t - voxel_size) of its weight, down to nothing at -t (t the
+  // truncation). Behind a thin part (a parapet, a wall's top, a pipe) the
+  // voxels lie in free space on the far side, and full-weight negative
+  // updates from the near side outvote the fewer views that see that side,
+  // filling concave corners there. mesh_weight_dropoff sets it for the mesh
+  // layer: on the power plant's 780 m flights it adds coverage without
+  // changing the flights (docs/planner_experiments.md, session 10).
+  bool weight_dropoff = false;
+  bool mesh_weight_dropoff = false;
   float w_th = 0.3f;              // W_th: known iff w >= w_th
   float max_weight = 0.0f;        // cap on w; 0 = no cap
   // Weight a voxel needs to be meshed (Marching Cubes corners): < 0 uses w_th
@@ -42,8 +52,12 @@ struct TsdfConfig {
 
   double truncationDistance() const { return truncation > 0.0 ? truncation : 3.0 * voxel_size; }
   // Whether mesh_truncation asks for a mesh layer of its own.
-  bool hasMeshLayer() const { return mesh_truncation > 0.0 && mesh_truncation != truncationDistance(); }
-  // This config with truncation = mesh_truncation and no mesh layer of its own.
+  bool hasMeshLayer() const {
+    return mesh_truncation > 0.0 &&
+           (mesh_truncation != truncationDistance() || mesh_weight_dropoff != weight_dropoff);
+  }
+  // This config with truncation = mesh_truncation, weight_dropoff =
+  // mesh_weight_dropoff and no mesh layer of its own.
   TsdfConfig meshLayerConfig() const;
   // Names the first bad key, e.g. "voxel_size expected > 0".
   Status validate() const;
