@@ -71,11 +71,13 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
   const MissionConfig& plant = configs["powerplant"];
   EXPECT_DOUBLE_EQ(plant.tsdf.voxel_size, 0.3);
   EXPECT_DOUBLE_EQ(plant.surface.delta_pose, 4.7);
-  // Both mesh a layer of 2.5 voxels with the drop-off; both plan on 3
-  // voxels with full weights; both tours keep viewpoints that see 3 ISEs.
+  // Both mesh a layer with the drop-off (the plant's of 2.5 voxels, the
+  // statue's of the map's 3), both plan on 3 voxels with full weights, both
+  // tours keep viewpoints that see 3 ISEs.
+  EXPECT_DOUBLE_EQ(plant.tsdf.mesh_truncation, 2.5 * plant.tsdf.voxel_size);
+  EXPECT_DOUBLE_EQ(statue.tsdf.mesh_truncation, 3.0 * statue.tsdf.voxel_size);
   for (const MissionConfig* c : {&statue, &plant}) {
     EXPECT_TRUE(c->tsdf.hasMeshLayer());
-    EXPECT_DOUBLE_EQ(c->tsdf.mesh_truncation, 2.5 * c->tsdf.voxel_size);
     EXPECT_TRUE(c->tsdf.meshLayerConfig().weight_dropoff);
     EXPECT_FALSE(c->tsdf.weight_dropoff);
     EXPECT_DOUBLE_EQ(c->tsdf.truncationDistance(), 3.0 * c->tsdf.voxel_size);
