@@ -23,16 +23,28 @@ std::string writeTemp(const std::string& name, const std::string& text) {
   return path;
 }
 
+// A column of the paper's Table 1.
+struct Table1 {
+  double voxel_size, min_range, max_range, delta_pose, d_nu, lambda_tc, lambda_ic;
+};
+const Table1 kPowerplant{0.3, 1.6, 8.0, 4.7, 2.0, 0.3, 0.03};
+const Table1 kStatue{0.15, 1.0, 5.0, 3.6, 2.5, 0.17, 0.15};
+
+void expectTable1(const MissionConfig& c, const Table1& t) {
+  EXPECT_DOUBLE_EQ(c.tsdf.voxel_size, t.voxel_size);
+  EXPECT_DOUBLE_EQ(c.camera.min_range, t.min_range);
+  EXPECT_DOUBLE_EQ(c.camera.max_range, t.max_range);
+  EXPECT_DOUBLE_EQ(c.surface.camera.max_range, t.max_range);
+  EXPECT_DOUBLE_EQ(c.surface.delta_pose, t.delta_pose);
+  EXPECT_DOUBLE_EQ(c.surface.d_nu, t.d_nu);
+  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_tc, t.lambda_tc);
+  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_ic, t.lambda_ic);
+}
+
 TEST(MissionConfig, ReadsTheSharedPlantParameters) {
   MissionConfig c;
   ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());
-  EXPECT_DOUBLE_EQ(c.tsdf.voxel_size, 0.3);
-  EXPECT_DOUBLE_EQ(c.camera.min_range, 1.6);
-  EXPECT_DOUBLE_EQ(c.camera.max_range, 8.0);
-  EXPECT_DOUBLE_EQ(c.surface.delta_pose, 4.7);
-  EXPECT_DOUBLE_EQ(c.surface.camera.max_range, 8.0);
-  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_tc, 0.3);
-  EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_ic, 0.03);
+  expectTable1(c, kPowerplant);
   EXPECT_EQ(c.scene.scene, "plant");
   // The mission section's planning keys: repeatable legs, travel yaw.
   EXPECT_EQ(c.path.iteration_budget, 3000);
@@ -61,16 +73,9 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
   ASSERT_EQ(configs.count("statue"), 1u);
   ASSERT_EQ(configs.count("powerplant"), 1u);
   const MissionConfig& statue = configs["statue"];
-  EXPECT_DOUBLE_EQ(statue.tsdf.voxel_size, 0.15);
-  EXPECT_DOUBLE_EQ(statue.camera.min_range, 1.0);
-  EXPECT_DOUBLE_EQ(statue.camera.max_range, 5.0);
-  EXPECT_DOUBLE_EQ(statue.surface.delta_pose, 3.6);
-  EXPECT_DOUBLE_EQ(statue.surface.d_nu, 2.5);
-  EXPECT_DOUBLE_EQ(statue.explorer.graph.lambda_tc, 0.17);
-  EXPECT_DOUBLE_EQ(statue.explorer.graph.lambda_ic, 0.15);
   const MissionConfig& plant = configs["powerplant"];
-  EXPECT_DOUBLE_EQ(plant.tsdf.voxel_size, 0.3);
-  EXPECT_DOUBLE_EQ(plant.surface.delta_pose, 4.7);
+  expectTable1(statue, kStatue);
+  expectTable1(plant, kPowerplant);
   // Both mesh a layer with the drop-off (the plant's of 2.5 voxels, the
   // statue's of the map's 3), both plan on 3 voxels with full weights, both
   // tours keep viewpoints that see 3 ISEs.
