@@ -23,6 +23,8 @@ Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera
     planned = planning->integrateDepth(camera, depth, T_W_C, stats);
     layered = planned ? integrateDepth(camera, depth, T_W_C) : Status::Ok();
   } else {
+    // One thread each for this frame, then the counts the callers had.
+    const int planning_threads = planning->threads(), layer_threads = integrator_->threads();
     planning->setThreads(1);
     integrator_->setThreads(1);
     parallelFor(2, 2, [&](size_t i) {
@@ -32,8 +34,8 @@ Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera
         layered = integrator_->integrateDepth(camera, depth, T_W_C);
       }
     });
-    planning->setThreads(0);
-    integrator_->setThreads(0);
+    planning->setThreads(planning_threads);
+    integrator_->setThreads(layer_threads);
   }
   if (layer != nullptr) {
     *layer = layered;

@@ -190,6 +190,7 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   TsdfConfig config = layeredConfig();
   config.threads = 2;
   LayeredMap serial(config), side(config);
+  side.integrator.setThreads(3);  // the caller's own count, kept across the frames
   DepthImage depth;
   for (int k = 0; k < 6; ++k) {
     const double dir = k % 2 == 0 ? 1.0 : -1.0;
@@ -203,7 +204,7 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   EXPECT_GT(serial.map.numBlocks(), 10u);
   expectSameVoxels(serial.map, side.map);
   expectSameVoxels(serial.layer.map(), side.layer.map());
-  EXPECT_EQ(side.integrator.threads(), 2);  // back to the map's own count
+  EXPECT_EQ(side.integrator.threads(), 3);  // back to the caller's count, not the map's 2
 
   // A pose outside the bounds: the planning map's error, and the layer's when asked for.
   const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
