@@ -184,10 +184,8 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
             sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
             if (!(sdf >= -trunc) || (sdf < 0.0f && silhouette[pixel])) continue;
             sdf = std::min(sdf, trunc);
-            if (dropoff.on) {
-              weight *= dropoff.share(sdf);
-              if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
-            }
+            weight *= dropoff.share(sdf);
+            if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
           }
           updateVoxel(&vox[i], sdf, weight, max_weight);
           ++n;

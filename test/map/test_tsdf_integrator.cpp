@@ -93,8 +93,9 @@ TEST(TsdfIntegrator, WallPhiIsExactAndWeightsSumInverseSquares) {
 }
 
 // With weight_dropoff, an update behind the wall keeps its full weight down
-// to one voxel behind, then (t + sdf) / (t - voxel) of it, nothing at -t;
-// the distances are the same as without, and so is everything in front.
+// to one voxel behind, then the share (t + sdf) / (t - voxel) of it, and
+// nothing at -t. The distances are the same as without, and so is
+// everything in front.
 TEST(TsdfIntegrator, WeightDropsOffBehindTheSurface) {
   WallWorld world;
   TsdfConfig config = wallConfig();

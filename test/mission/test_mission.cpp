@@ -5,8 +5,8 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <fstream>
+#include <map>
 
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/eval/surface_sampler.h"

@@ -6,12 +6,13 @@
 // truncation distance t, and the voxel is updated when sdf >= -t:
 //   phi <- (w phi + w_new sdf) / (w + w_new),  w <- w + w_new,  w_new = 1 / z^2
 // (weights optionally capped; with TsdfConfig::weight_dropoff, w_new falls
-// linearly from sdf = -voxel_size to nothing at -t). Free space in front of surfaces is carved this
-// way. Pixels on a silhouette (next to a depth jump larger than t or to a
-// pixel without depth) only carve: behind them a voxel just past an edge
-// cannot be told from one inside the object, and updating it would thicken
-// convex edges by up to t. Point clouds are integrated by casting each ray through the voxels
-// with the same update, distances measured along the ray.
+// linearly from sdf = -voxel_size to nothing at -t). Free space in front of
+// surfaces is carved this way. Pixels on a silhouette (next to a depth jump
+// larger than t or to a pixel without depth) only carve: behind them a voxel
+// just past an edge cannot be told from one inside the object, and updating
+// it would thicken convex edges by up to t. Point clouds are integrated by
+// casting each ray through the voxels with the same update, distances
+// measured along the ray.
 // Thread safety: one integration at a time per map; it uses config.threads
 // (or setThreads()).
 #pragma once
