@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Core>
+
 #include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
@@ -54,6 +56,7 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
   base.width = (W + kTile - 1) / kTile;
   base.height = (H + kTile - 1) / kTile;
   base.max_depth.assign(static_cast<size_t>(base.width) * base.height, kNone);
+  base.min_depth.assign(static_cast<size_t>(base.width) * base.height, kInf);
 
   // Pass 1, by bands of tile rows: usable depth, the silhouette key, the
   // farthest reach of each pixel (max range for cleared ones), tile maxima
@@ -66,6 +69,7 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     const int width = W;
     const int v_end = std::min(H, static_cast<int>(ty + 1) * kTile);
     float* tile_max = &base.max_depth[ty * base.width];
+    float* tile_min = &base.min_depth[ty * base.width];
     std::vector<float> reach_row(static_cast<size_t>(W));
     float* reach = reach_row.data();
     for (int v = static_cast<int>(ty) * kTile; v < v_end; ++v) {
@@ -77,9 +81,11 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
       invalid[ty] += static_cast<size_t>(bad);
       for (int u0 = 0, tx = 0; u0 < width; u0 += kTile, ++tx) {
         const int u1 = std::min(width, u0 + kTile);
-        float m = tile_max[tx];
+        float m = tile_max[tx], near = tile_min[tx];
         for (int u = u0; u < u1; ++u) m = std::max(m, reach[u]);
+        for (int u = u0; u < u1; ++u) near = std::min(near, out[u]);  // std::min keeps `near` for a NaN
         tile_max[tx] = m;
+        tile_min[tx] = near;
       }
     }
   });
@@ -106,7 +112,7 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     s[0] = differs(0, 0, std::min(1, W - 1));
     if (W > 1) s[W - 1] = differs(W - 1, W - 2, W - 1);
   });
-  // Pyramid: each level halves the previous one with max.
+  // Pyramids: each level halves the previous one with max (and min).
   size_t k = 1;
   for (; levels_[k - 1].width > 1 || levels_[k - 1].height > 1; ++k) {
     if (levels_.size() <= k) levels_.emplace_back();
@@ -115,10 +121,13 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     coarse.width = (fine.width + 1) / 2;
     coarse.height = (fine.height + 1) / 2;
     coarse.max_depth.assign(static_cast<size_t>(coarse.width) * coarse.height, kNone);
+    coarse.min_depth.assign(static_cast<size_t>(coarse.width) * coarse.height, kInf);
     for (int y = 0; y < fine.height; ++y) {
       for (int x = 0; x < fine.width; ++x) {
-        float& m = coarse.max_depth[static_cast<size_t>(y / 2) * coarse.width + x / 2];
-        m = std::max(m, fine.max_depth[static_cast<size_t>(y) * fine.width + x]);
+        const size_t to = static_cast<size_t>(y / 2) * coarse.width + x / 2;
+        const size_t from = static_cast<size_t>(y) * fine.width + x;
+        coarse.max_depth[to] = std::max(coarse.max_depth[to], fine.max_depth[from]);
+        coarse.min_depth[to] = std::min(coarse.min_depth[to], fine.min_depth[from]);
       }
     }
   }
@@ -128,17 +137,40 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
   return total;
 }
 
-float DepthIndex::maxDepthOver(int u0, int v0, int u1, int v1) const {
+namespace {
+
+// The coarsest pyramid level whose cells cover [u0, u1] x [v0, v1] with at
+// most 2 x 2 of them, and those cells.
+template <typename Level>
+const Level& coverLevel(const std::vector<Level>& levels, int u0, int v0, int u1, int v1, Eigen::Vector4i* cells) {
   int x0 = u0 / kTile, x1 = u1 / kTile, y0 = v0 / kTile, y1 = v1 / kTile;
   size_t k = 0;
-  while (k + 1 < levels_.size() && (x1 - x0 > 1 || y1 - y0 > 1)) {
+  while (k + 1 < levels.size() && (x1 - x0 > 1 || y1 - y0 > 1)) {
     x0 /= 2, x1 /= 2, y0 /= 2, y1 /= 2;
     ++k;
   }
-  const Level& l = levels_[k];
+  *cells << x0, y0, x1, y1;
+  return levels[k];
+}
+
+}  // namespace
+
+float DepthIndex::maxDepthOver(int u0, int v0, int u1, int v1) const {
+  Eigen::Vector4i c;
+  const Level& l = coverLevel(levels_, u0, v0, u1, v1, &c);
   float m = kNone;
-  for (int y = y0; y <= y1; ++y) {
-    for (int x = x0; x <= x1; ++x) m = std::max(m, l.max_depth[static_cast<size_t>(y) * l.width + x]);
+  for (int y = c[1]; y <= c[3]; ++y) {
+    for (int x = c[0]; x <= c[2]; ++x) m = std::max(m, l.max_depth[static_cast<size_t>(y) * l.width + x]);
+  }
+  return m;
+}
+
+float DepthIndex::minDepthOver(int u0, int v0, int u1, int v1) const {
+  Eigen::Vector4i c;
+  const Level& l = coverLevel(levels_, u0, v0, u1, v1, &c);
+  float m = kInf;
+  for (int y = c[1]; y <= c[3]; ++y) {
+    for (int x = c[0]; x <= c[2]; ++x) m = std::min(m, l.min_depth[static_cast<size_t>(y) * l.width + x]);
   }
   return m;
 }

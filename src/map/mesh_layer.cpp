@@ -1,5 +1,7 @@
 #include "surface_nbv/map/mesh_layer.h"
 
+#include <algorithm>
+
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/util/parallel_for.h"
 
@@ -57,10 +59,71 @@ void MeshLayer::setWeightScale(double scale) {
   if (integrator_) integrator_->setWeightScale(scale);
 }
 
+namespace {
+
+// Fills `fine` from `coarse` (a map of larger voxels over the same bounds):
+// each fine voxel inside an allocated coarse block takes the weight of the
+// coarse voxel holding its centre, and the distance interpolated trilinearly
+// between the eight coarse centres around it when all eight were seen (that
+// voxel's own otherwise), clamped to the fine map's truncation.
+void resample(const TsdfMap& coarse, TsdfMap* fine) {
+  const double ratio = coarse.voxelSize() / fine->voxelSize();
+  const float trunc = static_cast<float>(fine->config().truncationDistance());
+  const Eigen::Vector3d origin = coarse.config().bounds.min;
+  for (const auto& block : coarse.blocks()) {
+    const Eigen::Array3d lo = (block->index.array() * kBlockSize).cast<double>() * ratio;
+    const Eigen::Array3d hi = ((block->index.array() + 1) * kBlockSize).cast<double>() * ratio;
+    const Eigen::Vector3i first = lo.floor().cast<int>(), last = hi.ceil().cast<int>();
+    for (int z = first.z(); z < last.z(); ++z)
+      for (int y = first.y(); y < last.y(); ++y)
+        for (int x = first.x(); x < last.x(); ++x) {
+          const Eigen::Vector3i f(x, y, z);
+          if (!fine->voxelInBounds(f)) continue;
+          const Eigen::Vector3d p = fine->voxelCenter(f);
+          Eigen::Vector3i c;
+          if (!coarse.voxelIndex(p, &c) || TsdfMap::blockOfVoxel(c) != block->index) continue;
+          const TsdfVoxel* own = coarse.voxel(c);
+          if (own == nullptr || own->w <= 0.0f) continue;
+          // Trilinear weights from the coarse centres below p on each axis.
+          const Eigen::Vector3d g = (p - origin) / coarse.voxelSize() - Eigen::Vector3d::Constant(0.5);
+          const Eigen::Vector3i base = g.array().floor().cast<int>();
+          const Eigen::Vector3d t = g - base.cast<double>();
+          double phi = 0.0;
+          bool all = true;
+          for (int k = 0; k < 8; ++k) {
+            const Eigen::Vector3i o(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+            const TsdfVoxel* v = coarse.voxel(base + o);
+            if (v == nullptr || v->w <= 0.0f) {
+              all = false;
+              break;
+            }
+            const Eigen::Vector3d share = (o.cast<double>().array() * t.array() +
+                                           (1 - o.cast<double>().array()) * (1.0 - t.array()));
+            phi += share.prod() * v->phi;
+          }
+          TsdfVoxel* out = fine->allocateVoxel(f);
+          if (out == nullptr) continue;  // the block cap: counted by the map
+          out->phi = std::clamp(all ? static_cast<float>(phi) : own->phi, -trunc, trunc);
+          out->w = own->w;
+        }
+  }
+}
+
+}  // namespace
+
 Status MeshLayer::reload(const std::string& path) {
   if (!map_) return Status::Ok();
   auto fresh = std::make_unique<TsdfMap>(map_->config());
-  if (Status s = loadMap(path, fresh.get()); !s) return s;
+  if (fresh->voxelSize() == planning_->voxelSize()) {
+    if (Status s = loadMap(path, fresh.get()); !s) return s;
+  } else {
+    // A layer of other voxels cannot read the planning map's file: it is
+    // read at the planning map's voxels and resampled.
+    TsdfMap loaded(planning_->config()), staged(map_->config());
+    if (Status s = loadMap(path, &loaded); !s) return s;
+    resample(loaded, &staged);
+    fresh->adoptBlocks(&staged);  // stamps every block as changed, as loadMap does
+  }
   map_ = std::move(fresh);
   integrator_ = std::make_unique<TsdfIntegrator>(map_.get());
   return Status::Ok();

@@ -1,5 +1,6 @@
 #include "surface_nbv/map/tsdf_config.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace surface_nbv {
@@ -23,10 +24,13 @@ bool parseInvalidPixelPolicy(const std::string& text, InvalidPixelPolicy* policy
 
 TsdfConfig TsdfConfig::meshLayerConfig() const {
   TsdfConfig c = *this;
+  c.voxel_size = meshVoxelSize();
+  c.mesh_voxel_size = 0.0;
   c.truncation = mesh_truncation;
   c.mesh_truncation = 0.0;
   c.weight_dropoff = mesh_weight_dropoff;
   c.mesh_weight_dropoff = false;
+  c.band_allocation = true;
   return c;
 }
 
@@ -34,9 +38,15 @@ Status TsdfConfig::validate() const {
   if (!std::isfinite(voxel_size) || voxel_size <= 0.0) return Status::Error("voxel_size expected > 0");
   if (!std::isfinite(truncation) || truncation < 0.0) return Status::Error("truncation expected >= 0 (0 = 3 voxels)");
   if (truncation > 0.0 && truncation < voxel_size) return Status::Error("truncation expected >= voxel_size");
+  if (!std::isfinite(mesh_voxel_size) || mesh_voxel_size < 0.0) {
+    return Status::Error("mesh_voxel_size expected >= 0 (0 = voxel_size)");
+  }
   if (!std::isfinite(mesh_truncation) || mesh_truncation < 0.0 ||
-      (mesh_truncation > 0.0 && mesh_truncation < voxel_size)) {
-    return Status::Error("mesh_truncation expected 0 (mesh the map itself) or >= voxel_size");
+      (mesh_truncation > 0.0 && mesh_truncation < meshVoxelSize())) {
+    return Status::Error("mesh_truncation expected 0 (mesh the map itself) or >= the mesh layer's voxel size");
+  }
+  if (mesh_voxel_size > 0.0 && mesh_truncation <= 0.0) {
+    return Status::Error("mesh_voxel_size needs a mesh layer (mesh_truncation > 0)");
   }
   if (mesh_weight_dropoff && mesh_truncation <= 0.0) {
     return Status::Error("mesh_weight_dropoff needs a mesh layer (mesh_truncation > 0)");
@@ -49,7 +59,7 @@ Status TsdfConfig::validate() const {
   if (!bounds.min.allFinite() || !bounds.max.allFinite() || (bounds.max.array() <= bounds.min.array()).any()) {
     return Status::Error("bounds expected finite with bounds_min < bounds_max on every axis");
   }
-  const Eigen::Array3d blocks = (bounds.size() / (voxel_size * 8)).array().ceil();
+  const Eigen::Array3d blocks = (bounds.size() / (std::min(voxel_size, meshVoxelSize()) * 8)).array().ceil();
   if (blocks.prod() > 64e6) {
     return Status::Error("bounds hold " + std::to_string(static_cast<long long>(blocks.prod())) +
                          " block slots at this voxel_size (limit 64M): shrink the bounds or grow voxel_size");

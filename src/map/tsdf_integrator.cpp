@@ -86,12 +86,13 @@ std::vector<TsdfBlock*> TsdfIntegrator::candidateBlocks(const DepthCamera& camer
         bool outside = false;
         for (const SidePlane& p : planes) outside = outside || p.distance(centre_C) < -radius;
         if (outside) continue;
-        double zmin = std::numeric_limits<double>::infinity();
+        double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
         double umin = zmin, umax = -zmin, vmin = zmin, vmax = -zmin;
         bool behind = false;
         for (int c = 0; c < 8; ++c) {
           const Eigen::Vector3d p = T_C_W * (origin + block_len * Eigen::Vector3d(c & 1, (c >> 1) & 1, (c >> 2) & 1));
           zmin = std::min(zmin, p.z());
+          zmax = std::max(zmax, p.z());
           if (p.z() <= 1e-6) {
             behind = true;
             continue;
@@ -106,6 +107,11 @@ std::vector<TsdfBlock*> TsdfIntegrator::candidateBlocks(const DepthCamera& camer
         const int v0 = std::max(0, static_cast<int>(std::floor(vmin + 0.5)));
         const int v1 = std::min(H - 1, static_cast<int>(std::floor(vmax + 0.5)));
         if (zmin > index_.maxDepthOver(u0, v0, u1, v1) + t) continue;  // hidden behind every surface
+        // band_allocation: a new block wholly in front of every surface by more than t.
+        if (cfg.band_allocation && zmax < index_.minDepthOver(u0, v0, u1, v1) - t &&
+            map_->block(Eigen::Vector3i(x, y, z)) == nullptr) {
+          continue;
+        }
         kept[slice].emplace_back(x, y, z);
       }
     }

@@ -119,6 +119,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   c->tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
   nbv.get("truncation", &c->tsdf.truncation);
   nbv.get("mesh_truncation", &c->tsdf.mesh_truncation);
+  nbv.get("mesh_voxel_size", &c->tsdf.mesh_voxel_size);
   nbv.get("weight_dropoff", &c->tsdf.weight_dropoff);
   nbv.get("mesh_weight_dropoff", &c->tsdf.mesh_weight_dropoff);
   nbv.getVector("bounds_min", &c->tsdf.bounds.min);

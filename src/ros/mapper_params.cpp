@@ -39,6 +39,7 @@ void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
   map->mesh_min_weight = static_cast<float>(mesh_min_weight);
   shared->get("truncation", &map->truncation);
   shared->get("mesh_truncation", &map->mesh_truncation);
+  shared->get("mesh_voxel_size", &map->mesh_voxel_size);
   shared->get("weight_dropoff", &map->weight_dropoff);
   shared->get("mesh_weight_dropoff", &map->mesh_weight_dropoff);
   shared->get("bounds_min", &map->bounds.min);

@@ -5,8 +5,8 @@
 // mission changes chaotically with any change of the map).
 //
 //   nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]
-//              [--mesh-truncation M] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W] [--seed S]
-//              [--threads N] [--out DIR] [--observed]
+//              [--mesh-truncation M] [--mesh-voxel-size V] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W]
+//              [--seed S] [--threads N] [--out DIR] [--observed]
 //
 // PATH.csv is nbv_mission's trial_K/path.csv: header t_s,x_m,y_m,z_m,yaw_rad,
 // one base_link pose per integrated depth frame. Every frame is fused as
@@ -51,8 +51,8 @@ using Clock = std::chrono::steady_clock;
 
 const char* kUsage =
     "usage: nbv_refuse --path PATH.csv [--scene plant|statue|FILE] [--config YAML] [--truncation M]\n"
-    "                  [--mesh-truncation M] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W] [--seed S]\n"
-    "                  [--threads N] [--out DIR]\n"
+    "                  [--mesh-truncation M] [--mesh-voxel-size V] [--mesh-weight-dropoff 0|1] [--mesh-min-weight W]\n"
+    "                  [--seed S] [--threads N] [--out DIR]\n"
     "                  [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--observed]\n"
     "  Re-fuses the poses of PATH.csv (nbv_mission's trial_K/path.csv) with the config's TSDF parameters,\n"
     "  meshes and evaluates the result. --config defaults to config/<scene name>.yaml of the package when it\n"
@@ -182,8 +182,8 @@ int main(int argc, char** argv) {
   const auto wall0 = Clock::now();
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(),
-                 {"path", "config", "truncation", "mesh-truncation", "mesh-weight-dropoff", "mesh-min-weight", "seed",
-                  "threads", "out"});
+                 {"path", "config", "truncation", "mesh-truncation", "mesh-voxel-size", "mesh-weight-dropoff", "mesh-min-weight",
+                  "seed", "threads", "out"});
   CliArgs args(options, {"help", "observed"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -198,6 +198,7 @@ int main(int argc, char** argv) {
   double mesh_min_weight = config.tsdf.mesh_min_weight;
   const Status parsed[] = {args.getDouble("truncation", &config.tsdf.truncation),
                            args.getDouble("mesh-truncation", &config.tsdf.mesh_truncation),
+                           args.getDouble("mesh-voxel-size", &config.tsdf.mesh_voxel_size),
                            args.getInt("mesh-weight-dropoff", &dropoff),
                            args.getDouble("mesh-min-weight", &mesh_min_weight), args.getInt("seed", &seed),
                            args.getInt("threads", &config.threads)};
@@ -212,7 +213,7 @@ int main(int argc, char** argv) {
   config.tsdf.mesh_min_weight = static_cast<float>(mesh_min_weight);
   config.seed = static_cast<unsigned>(seed);
   if (Status s = config.validate(); !s) {
-    const bool overridden = args.has("truncation") || args.has("mesh-truncation") ||
+    const bool overridden = args.has("truncation") || args.has("mesh-truncation") || args.has("mesh-voxel-size") ||
                             args.has("mesh-weight-dropoff") || args.has("mesh-min-weight") || args.has("threads");
     const std::string source = config_file.empty() ? "default config" : config_file;
     return fail(source + (overridden ? " with the command-line overrides" : "") + ": " + s.message());

@@ -1,5 +1,5 @@
 // DepthIndex against a plain per-pixel reference: usable depths, invalid
-// counts, silhouettes and the max-depth bound, on images mixing surfaces,
+// counts, silhouettes and the max- and min-depth bounds, on images mixing surfaces,
 // depth jumps and every kind of invalid pixel.
 #include "surface_nbv/map/depth_index.h"
 
@@ -102,19 +102,27 @@ TEST(DepthIndex, MatchesThePerPixelReference) {
         for (float x : r.usable)
           if (!std::isnan(x)) largest = std::max(largest, std::isinf(x) ? static_cast<float>(config.max_range) : x);
         EXPECT_EQ(index.maxDepthOver(0, 0, config.width - 1, config.height - 1), largest);
+        // The nearest measured depth (cleared pixels do not count): at most
+        // every one inside, exactly the smallest over the image.
+        float nearest = kInf;
+        for (float x : r.usable)
+          if (std::isfinite(x)) nearest = std::min(nearest, x);
+        EXPECT_EQ(index.minDepthOver(0, 0, config.width - 1, config.height - 1), nearest);
         std::mt19937 rng(threads);
         for (int k = 0; k < 200; ++k) {
           int u0 = rng() % config.width, u1 = rng() % config.width, v0 = rng() % config.height,
               v1 = rng() % config.height;
           if (u0 > u1) std::swap(u0, u1);
           if (v0 > v1) std::swap(v0, v1);
-          float truth = -kInf;
+          float truth = -kInf, near = kInf;
           for (int v = v0; v <= v1; ++v)
             for (int u = u0; u <= u1; ++u) {
               const float x = r.usable[static_cast<size_t>(v) * config.width + u];
               if (!std::isnan(x)) truth = std::max(truth, std::isinf(x) ? static_cast<float>(config.max_range) : x);
+              if (std::isfinite(x)) near = std::min(near, x);
             }
           ASSERT_GE(index.maxDepthOver(u0, v0, u1, v1), truth) << u0 << " " << v0 << " " << u1 << " " << v1;
+          ASSERT_LE(index.minDepthOver(u0, v0, u1, v1), near) << u0 << " " << v0 << " " << u1 << " " << v1;
         }
       }
     }

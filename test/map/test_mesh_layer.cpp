@@ -241,3 +241,150 @@ TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
   EXPECT_EQ(layer.map().numBlocks(), planning.numBlocks());  // a refused file changes nothing
   std::filesystem::remove(path);
 }
+
+// mesh_voxel_size: a layer of finer voxels than the planning map's, even at
+// the planning map's own truncation; the keys that make no sense are refused.
+TEST(MeshLayer, FinerVoxelsMakeALayerOfTheirOwn) {
+  TsdfConfig c = thinWallConfig();
+  c.mesh_truncation = c.truncationDistance();
+  c.mesh_voxel_size = 0.05;
+  ASSERT_TRUE(c.validate().ok()) << c.validate().message();
+  TsdfMap planning(c);
+  MeshLayer layer(&planning);
+  ASSERT_TRUE(layer.separate());
+  EXPECT_DOUBLE_EQ(layer.map().voxelSize(), 0.05);
+  EXPECT_DOUBLE_EQ(layer.map().config().truncationDistance(), 0.3);
+  EXPECT_DOUBLE_EQ(planning.voxelSize(), 0.1);
+  EXPECT_FALSE(layer.map().config().hasMeshLayer());
+  // The layer's truncation may be shorter than a planning voxel, not than its own.
+  c.mesh_truncation = 0.08;
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  c.mesh_truncation = 0.04;
+  EXPECT_NE(c.validate().message().find("mesh_truncation"), std::string::npos) << c.validate().message();
+  c.mesh_truncation = 0.2;
+  for (double bad : {-0.05, std::nan("")}) {
+    c.mesh_voxel_size = bad;
+    EXPECT_NE(c.validate().message().find("mesh_voxel_size expected"), std::string::npos) << bad;
+  }
+  c.mesh_voxel_size = 0.05;
+  c.mesh_truncation = 0.0;
+  EXPECT_NE(c.validate().message().find("mesh_voxel_size needs a mesh layer"), std::string::npos)
+      << c.validate().message();
+}
+
+namespace {
+
+// Optical frame at `position` looking at `target` (world z up, image y down).
+Transform lookingAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d z = (target - position).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Transform T = Transform::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = z.cross(x);
+  T.linear().col(2) = z;
+  T.translation() = position;
+  return T;
+}
+
+// Mean distance from points along a vertical edge (x0, y0, z in [-1, 1]) to
+// the nearest vertex of `mesh`.
+double edgeGap(const TriangleMesh& mesh, double x0, double y0) {
+  double sum = 0.0;
+  int n = 0;
+  for (double z = -1.0; z <= 1.0; z += 0.02, ++n) {
+    const Eigen::Vector3f p(static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(z));
+    float best = INFINITY;
+    for (const Eigen::Vector3f& v : mesh.vertices) best = std::min(best, (v - p).squaredNorm());
+    sum += std::sqrt(best);
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+// A projective TSDF pulls Marching Cubes' zero crossing into the object at a
+// convex edge, by up to a voxel: a layer of half the voxels, fused from the
+// same frames, follows a box's edge more closely than the planning map.
+TEST(MeshLayer, FinerLayerFollowsAConvexEdge) {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(5.0, 0.0, 0.0), Eigen::Vector3d(1.0, 1.0, 4.0));
+  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera = smallCamera();
+  const DepthRenderer renderer(*scene, camera, 1);
+
+  TsdfConfig c = thinWallConfig();
+  c.bounds = AlignedBox(Eigen::Vector3d(0, -5, -3), Eigen::Vector3d(10, 5, 3));
+  c.mesh_truncation = c.truncationDistance();
+  c.mesh_voxel_size = 0.05;
+  c.mesh_min_weight = 0.0f;
+  ASSERT_TRUE(c.validate().ok()) << c.validate().message();
+  LayeredMap m(c);
+  ASSERT_TRUE(m.layer.separate());
+  const Eigen::Vector3d corner(4.5, -0.5, 0.0);  // the edge facing the cameras
+  DepthImage depth;
+  for (double deg = 150.0; deg <= 300.0; deg += 15.0) {  // around the corner, 3 m away
+    const double a = deg * M_PI / 180.0;
+    const Eigen::Vector3d from = corner + 3.0 * Eigen::Vector3d(std::cos(a), std::sin(a), 0.1);
+    const Transform T = lookingAt(from, corner);
+    renderer.render(T, &depth);
+    ASSERT_TRUE(m.layer.integrateDepthWith(&m.integrator, camera, depth, T, 1).ok());
+  }
+  MeshExtractor planning_mesh, layer_mesh;
+  planning_mesh.update(m.map);
+  layer_mesh.update(m.layer.map());
+  ASSERT_FALSE(planning_mesh.mesh().empty());
+  ASSERT_FALSE(layer_mesh.mesh().empty());
+  const double coarse = edgeGap(planning_mesh.mesh(), corner.x(), corner.y());
+  const double fine = edgeGap(layer_mesh.mesh(), corner.x(), corner.y());
+  std::printf("convex edge: mean gap to the mesh %.4f m at 0.1 m voxels, %.4f m at 0.05 m\n", coarse, fine);
+  EXPECT_LT(fine, 0.6 * coarse);
+  EXPECT_LT(fine, 0.05);
+}
+
+// A finer layer cannot read the planning map's file: reload resamples it, so
+// the mesh shows the loaded wall in place and the loaded free space is free.
+TEST(MeshLayer, ReloadResamplesTheFileForAFinerLayer) {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 100.0, 100.0));
+  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera = smallCamera();
+  const DepthRenderer renderer(*scene, camera, 1);
+  TsdfConfig c = thinWallConfig();
+  c.mesh_truncation = 0.2;
+  c.mesh_voxel_size = 0.05;
+  TsdfMap planning(c);
+  TsdfIntegrator integrator(&planning);
+  DepthImage depth;
+  for (int k = 0; k < 3; ++k) {  // the front face only
+    const Transform T = lookingAlongX(Eigen::Vector3d(2.0 + 0.3 * k, 0.05 * k, 0.0), 1.0);
+    renderer.render(T, &depth);
+    ASSERT_TRUE(integrator.integrateDepth(camera, depth, T).ok());
+  }
+  const std::string path = (std::filesystem::temp_directory_path() / "mesh_layer_resample.tsdf").string();
+  ASSERT_TRUE(saveMap(planning, path).ok());
+  MeshLayer layer(&planning);
+  ASSERT_TRUE(layer.reload(path).ok());
+  std::filesystem::remove(path);
+  EXPECT_DOUBLE_EQ(layer.map().voxelSize(), 0.05);
+  EXPECT_GT(layer.map().numBlocks(), planning.numBlocks());  // 8 fine blocks per coarse one, or fewer
+  Eigen::Vector3i in_front, coarse_in_front;
+  ASSERT_TRUE(layer.map().voxelIndex(Eigen::Vector3d(4.0, 0.0, 0.0), &in_front));
+  ASSERT_TRUE(planning.voxelIndex(Eigen::Vector3d(4.0, 0.0, 0.0), &coarse_in_front));
+  ASSERT_EQ(planning.state(coarse_in_front), VoxelState::kFree);
+  EXPECT_EQ(layer.map().state(in_front), VoxelState::kFree);
+  // The front face where the planning map has it: vertices near x = 5.0.
+  MeshExtractor mesher;
+  mesher.update(layer.map());
+  double sum = 0.0;
+  size_t n = 0;
+  for (const Eigen::Vector3f& v : mesher.mesh().vertices) {
+    if (std::abs(v.y()) > 1.0 || std::abs(v.z()) > 1.0) continue;
+    sum += std::abs(v.x() - kFront);
+    ++n;
+  }
+  ASSERT_GT(n, 100u);
+  std::printf("resampled layer: %zu vertices, mean distance to the front face %.4f m\n", n, sum / n);
+  EXPECT_LT(sum / n, 0.03);
+}

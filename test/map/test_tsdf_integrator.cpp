@@ -132,6 +132,46 @@ TEST(TsdfIntegrator, WeightDropsOffBehindTheSurface) {
   EXPECT_FALSE(TsdfConfig().weight_dropoff);
 }
 
+// band_allocation (the mesh layer's): no new block wholly in front of the
+// wall by more than the truncation; blocks near the wall hold the same voxels
+// as without; a block that exists is still updated however far in front.
+TEST(TsdfIntegrator, BandAllocationKeepsBlocksNearSurfaces) {
+  WallWorld world;
+  TsdfConfig config = wallConfig();
+  config.band_allocation = true;
+  TsdfMap full_map(wallConfig()), band_map(config);
+  TsdfIntegrator full(&full_map), band(&band_map);
+  const DepthCamera camera(world.camera_config);
+  const Transform T = lookingAlongX(Eigen::Vector3d(0.0, 0.0, 0.0));
+  const DepthImage depth = world.render(T);
+  ASSERT_TRUE(full.integrateDepth(camera, depth, T).ok());
+  // A block 4 m in front of the wall, allocated before the frame.
+  Eigen::Vector3i near_camera;
+  ASSERT_TRUE(band_map.voxelIndex(Eigen::Vector3d(1.0, 0.0, 0.0), &near_camera));
+  ASSERT_NE(band_map.allocateVoxel(near_camera), nullptr);
+  ASSERT_TRUE(band.integrateDepth(camera, depth, T).ok());
+  const double trunc = config.truncationDistance(), block_len = config.voxel_size * kBlockSize;
+  size_t far_blocks = 0;
+  for (const auto& b : full_map.blocks()) {
+    const double x0 = config.bounds.min.x() + b->index.x() * block_len;
+    if (x0 + block_len < world.wall_x - trunc) {
+      far_blocks += 1;
+      const bool kept = band_map.block(b->index) != nullptr;
+      EXPECT_EQ(kept, b->index == TsdfMap::blockOfVoxel(near_camera)) << b->index.transpose();
+      continue;
+    }
+    const TsdfBlock* kept = band_map.block(b->index);
+    ASSERT_NE(kept, nullptr) << "a block within the truncation of the wall is missing: " << b->index.transpose();
+    EXPECT_EQ(std::memcmp(kept->voxels.data(), b->voxels.data(), sizeof(b->voxels)), 0) << b->index.transpose();
+  }
+  EXPECT_GT(far_blocks, 10u);
+  EXPECT_LT(band_map.numBlocks(), full_map.numBlocks());
+  const TsdfVoxel* carved = band_map.voxel(near_camera);
+  ASSERT_NE(carved, nullptr);
+  EXPECT_GT(carved->w, 0.0f);  // updated: free space seen 4 m in front of the wall
+  EXPECT_FLOAT_EQ(carved->phi, static_cast<float>(trunc));
+}
+
 TEST(TsdfIntegrator, StatesAfterRepeatedViews) {
   WallWorld world;
   TsdfMap map(wallConfig());

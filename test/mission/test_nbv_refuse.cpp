@@ -187,7 +187,7 @@ TEST_F(NbvRefuse, RefusesBadInputsNamingThem) {
       {box + outside, outside + ":3: integration of frame 1 (t = 0.2"},
       {box + outside, "camera pose is outside the map bounds"},
       {box + good + " --truncation 0.01", "truncation expected >= voxel_size"},
-      {box + good + " --mesh-truncation -1", "mesh_truncation expected 0 (mesh the map itself) or >= voxel_size"},
+      {box + good + " --mesh-truncation -1", "mesh_truncation expected 0 (mesh the map itself) or >= the mesh layer's voxel size"},
       {box + good + " --mesh-min-weight 1e40", "--mesh-min-weight expects a finite number"},
       {box + good + " --truncation abc", "--truncation expects a number, got 'abc'"},
       {box + good + " --threads 0", "mission/threads expected in [1, 64]"},

@@ -3,7 +3,8 @@
 // a silhouette flag (next to a depth jump larger than the truncation or to a
 // pixel without usable depth), and a max-depth pyramid over 8 x 8 tiles that
 // bounds the farthest usable depth in any pixel rectangle with four look-ups,
-// so whole blocks hidden behind surfaces are skipped. Buffers are kept
+// so whole blocks hidden behind surfaces are skipped, and a min-depth pyramid
+// of the measured depths, so blocks far in front of every surface can be. Buffers are kept
 // between frames. Not thread safe; build() itself uses `threads`.
 #pragma once
 
@@ -30,11 +31,15 @@ class DepthIndex {
   // Farthest depth any pixel in [u0, u1] x [v0, v1] can reach (max range for
   // cleared pixels), or -inf when none can; an upper bound, never less.
   float maxDepthOver(int u0, int v0, int u1, int v1) const;
+  // Nearest measured depth in the rectangle (cleared pixels do not count),
+  // or +inf when it holds none; a lower bound, never more.
+  float minDepthOver(int u0, int v0, int u1, int v1) const;
 
  private:
   struct Level {
     int width = 0, height = 0;
     std::vector<float> max_depth;
+    std::vector<float> min_depth;  // measured depths only
   };
   std::vector<float> usable_;
   std::vector<float> key_;  // usable depth, or kFar where there is none (silhouette test)

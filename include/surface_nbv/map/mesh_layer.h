@@ -1,8 +1,9 @@
 // The TSDF the reconstruction mesh is extracted from.
 //
-// With TsdfConfig::mesh_truncation set (and different from the planning
-// map's truncation), it is a second TSDF fused from the same frames with that
-// truncation; otherwise it is the planning map itself and costs nothing. A
+// With TsdfConfig::mesh_truncation set (and a truncation, weight drop-off
+// or voxel size that differs from the planning map's), it is a second TSDF
+// fused from the same frames; otherwise it is the planning map itself and
+// costs nothing. A
 // TSDF writes negative distances up to the truncation behind every surface it
 // sees, so a wall thinner than that is eroded from both sides: on the power
 // plant, fusing four recorded flights again with 2.5 voxels instead of 3
@@ -50,7 +51,9 @@ class MeshLayer {
   Status markFree(const Eigen::Vector3d& center, double radius);
   void setWeightScale(double scale);
   // After the planning map was loaded from `path`: the layer starts again
-  // from the same file, so the mesh shows what was loaded.
+  // from the same file, so the mesh shows what was loaded. A layer of finer
+  // voxels (TsdfConfig::mesh_voxel_size) gets the file resampled: weights
+  // of the voxel around each centre, distances interpolated.
   Status reload(const std::string& path);
 
  private:

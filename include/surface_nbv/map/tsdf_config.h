@@ -29,6 +29,10 @@ struct TsdfConfig {
   // Truncation of the mesh layer, a second TSDF fused from the same frames
   // that the reconstruction mesh comes from (mesh_layer.h); 0 meshes this map.
   double mesh_truncation = 0.0;
+  // Voxel size of the mesh layer; 0 keeps voxel_size. A finer layer puts
+  // Marching Cubes' zero crossings closer to convex edges, where a projective
+  // TSDF pulls them into the object by up to a voxel.
+  double mesh_voxel_size = 0.0;
   // Weight drop-off behind surfaces: an update with sdf < -voxel_size counts
   // (t + sdf) / (t - voxel_size) of its weight, down to nothing at -t (t the
   // truncation). Behind a thin part (a parapet, a wall's top, a pipe) the
@@ -39,6 +43,12 @@ struct TsdfConfig {
   // changing the flights (docs/planner_experiments.md, session 10).
   bool weight_dropoff = false;
   bool mesh_weight_dropoff = false;
+  // New blocks only within the truncation of a measured depth: a block that
+  // lies wholly in front of every surface in view by more than the
+  // truncation is not allocated (blocks that exist are updated as before).
+  // Free space far from surfaces stays unknown, so it is for maps that are
+  // only meshed: the mesh layer sets it (meshLayerConfig()).
+  bool band_allocation = false;
   float w_th = 0.3f;              // W_th: known iff w >= w_th
   float max_weight = 0.0f;        // cap on w; 0 = no cap
   // Weight a voxel needs to be meshed (Marching Cubes corners): < 0 uses w_th
@@ -51,13 +61,15 @@ struct TsdfConfig {
   int threads = 1;                // integration threads
 
   double truncationDistance() const { return truncation > 0.0 ? truncation : 3.0 * voxel_size; }
+  double meshVoxelSize() const { return mesh_voxel_size > 0.0 ? mesh_voxel_size : voxel_size; }
   // Whether mesh_truncation asks for a mesh layer of its own.
   bool hasMeshLayer() const {
-    return mesh_truncation > 0.0 &&
-           (mesh_truncation != truncationDistance() || mesh_weight_dropoff != weight_dropoff);
+    return mesh_truncation > 0.0 && (mesh_truncation != truncationDistance() ||
+                                     mesh_weight_dropoff != weight_dropoff || meshVoxelSize() != voxel_size);
   }
-  // This config with truncation = mesh_truncation, weight_dropoff =
-  // mesh_weight_dropoff and no mesh layer of its own.
+  // This config with voxel_size = meshVoxelSize(), truncation =
+  // mesh_truncation, weight_dropoff = mesh_weight_dropoff, band_allocation
+  // and no mesh layer of its own.
   TsdfConfig meshLayerConfig() const;
   // Names the first bad key, e.g. "voxel_size expected > 0".
   Status validate() const;
