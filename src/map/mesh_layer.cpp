@@ -14,12 +14,50 @@ MeshLayer::MeshLayer(const TsdfMap* planning) : planning_(planning) {
   integrator_ = std::make_unique<TsdfIntegrator>(map_.get());
 }
 
+MeshLayer::~MeshLayer() { finish(); }
+
+Status MeshLayer::finish() { return behind_.valid() ? behind_.get() : Status::Ok(); }
+
 Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
+  if (Status s = finish(); !s) return s;
   return integrator_ ? integrator_->integrateDepth(camera, depth, T_W_C) : Status::Ok();
+}
+
+Status MeshLayer::integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
+                                       const Transform& T_W_C, int threads, IntegrationStats* stats, Status* layer) {
+  Status layered = finish();  // the previous frame's
+  Status planned;
+  if (!integrator_ || threads < 2) {
+    Status now;
+    planned = integrateDepthWith(planning, camera, depth, T_W_C, threads, stats, &now);
+    if (layered) layered = now;
+  } else {
+    const int planning_threads = planning->threads();
+    planning->setThreads(threads - 1);
+    planned = planning->integrateDepth(camera, depth, T_W_C, stats);
+    planning->setThreads(planning_threads);
+    if (planned) {
+      behind_depth_ = depth;
+      behind_camera_.emplace(camera);
+      behind_ = std::async(std::launch::async, [this, T_W_C] {
+        const int layer_threads = integrator_->threads();
+        integrator_->setThreads(1);
+        Status s = integrator_->integrateDepth(*behind_camera_, behind_depth_, T_W_C);
+        integrator_->setThreads(layer_threads);
+        return s;
+      });
+    }
+  }
+  if (layer != nullptr) {
+    *layer = layered;
+    return planned;
+  }
+  return planned ? layered : planned;
 }
 
 Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
                                      const Transform& T_W_C, int threads, IntegrationStats* stats, Status* layer) {
+  if (Status s = finish(); !s) return s;
   Status planned, layered;
   if (!integrator_ || threads < 2) {
     planned = planning->integrateDepth(camera, depth, T_W_C, stats);
@@ -48,14 +86,17 @@ Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera
 
 Status MeshLayer::integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S,
                                   double max_range) {
+  if (Status s = finish(); !s) return s;
   return integrator_ ? integrator_->integratePoints(points_S, T_W_S, max_range) : Status::Ok();
 }
 
 Status MeshLayer::markFree(const Eigen::Vector3d& center, double radius) {
+  if (Status s = finish(); !s) return s;
   return integrator_ ? integrator_->markFree(center, radius) : Status::Ok();
 }
 
 void MeshLayer::setWeightScale(double scale) {
+  finish();  // a failed fusion in flight was already the caller's to see
   if (integrator_) integrator_->setWeightScale(scale);
 }
 
@@ -112,6 +153,7 @@ void resample(const TsdfMap& coarse, TsdfMap* fine) {
 }  // namespace
 
 Status MeshLayer::reload(const std::string& path) {
+  finish();  // the layer starts again whatever became of the frame in flight
   if (!map_) return Status::Ok();
   auto fresh = std::make_unique<TsdfMap>(map_->config());
   if (fresh->voxelSize() == planning_->voxelSize()) {

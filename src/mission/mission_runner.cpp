@@ -163,7 +163,9 @@ MissionResult MissionRunner::run() {
     renderer.render(T_W_C, &depth, result.frames);
     result.times.render += msSince(t_render);
     const auto t_integrate = Clock::now();
-    const Status fused = mesh_layer_->integrateDepthWith(&integrator, camera, depth, T_W_C, c.threads);
+    // The mesh layer fuses each frame on a thread of its own while the
+    // mission goes on (the same layer as fusing it here, see mesh_layer.h).
+    const Status fused = mesh_layer_->integrateDepthBehind(&integrator, camera, depth, T_W_C, c.threads);
     if (!fused) {
       result.status = Status::Error("integration failed at t = " + std::to_string(tracker.time()) + ": " + fused.message());
       break;
@@ -237,6 +239,9 @@ MissionResult MissionRunner::run() {
     } else if (d.action == ExplorerAction::kHover) {
       tracker.hold();
     }
+  }
+  if (Status s = mesh_layer_->finish(); !s && result.status) {
+    result.status = Status::Error("mesh layer integration failed: " + s.message());
   }
   if (result.end_reason.empty() && result.status) {
     result.end_reason = pathLeft() ? "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached"

@@ -1,5 +1,6 @@
 #include "surface_nbv/ros/tsdf_mapper_server.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -191,9 +192,18 @@ void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
   const auto t0 = std::chrono::steady_clock::now();
   IntegrationStats s;
   Status layer;
-  const Status status =
-      f.camera ? mesh_layer_.integrateDepthWith(&integrator_, *f.camera, f.depth, T_W_S, config_.tsdf.threads, &s, &layer)
-               : integrator_.integratePoints(f.points, T_W_S, config_.camera.max_range, &s);
+  Status status;
+  if (!f.camera) {
+    status = integrator_.integratePoints(f.points, T_W_S, config_.camera.max_range, &s);
+  } else if (mesh_layer_.busy()) {
+    // The mesh layer still fuses an earlier frame on its own thread: this
+    // one goes into the planning map alone, which never waits for the mesh.
+    status = integrator_.integrateDepth(*f.camera, f.depth, T_W_S, &s);
+    if (status) stats_.count("mesh_layer_skipped");
+  } else {
+    status = mesh_layer_.integrateDepthBehind(&integrator_, *f.camera, f.depth, T_W_S,
+                                              std::max(2, config_.tsdf.threads), &s, &layer);
+  }
   if (!status) return drop("integration", status.message());
   if (!f.camera) layer = mesh_layer_.integratePoints(f.points, T_W_S, config_.camera.max_range);
   if (!layer) {
@@ -235,9 +245,17 @@ void TsdfMapperServer::publishUpdate() {
   snapshot_requested_ = false;
 }
 
+void TsdfMapperServer::finishMeshLayer() {
+  if (Status s = mesh_layer_.finish(); !s) {
+    stats_.count("mesh_layer_failed");
+    ROS_WARN_THROTTLE(10.0, "tsdf_mapper: mesh layer: %s", s.message().c_str());
+  }
+}
+
 void TsdfMapperServer::publishMesh() {
   if (mesh_pub_.getNumSubscribers() == 0 || map_.changeCounter() == meshed_stamp_) return;
   meshed_stamp_ = map_.changeCounter();
+  finishMeshLayer();
   mesher_->update(mesh_layer_.map());
   visualization_msgs::Marker marker;
   std_msgs::Header header;
@@ -287,6 +305,7 @@ bool TsdfMapperServer::exportMesh(surface_nbv::FilePath::Request& req, surface_n
   std::string path;
   Status s = resolveFileName(config_.map_directory, req.path, false, &path);
   if (!s) return res.code = 1, res.message = s.message(), true;
+  finishMeshLayer();
   mesher_->update(mesh_layer_.map());
   meshed_stamp_ = map_.changeCounter();
   s = mesher_->exportMesh(path);

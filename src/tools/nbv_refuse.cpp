@@ -246,10 +246,11 @@ int main(int argc, char** argv) {
   const DepthRenderer renderer(*scene, camera, config.threads);
   const Transform T_B_C = opticalInBody();
   const TsdfConfig& meshed = mesh_layer.map().config();
-  std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh truncation %.3f m%s%s, "
+  std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh voxel %.3f m, "
+              "mesh truncation %.3f m%s%s, "
               "mesh_min_weight %g; %zu frames from %s (seed %d)\n",
               config.scene.scene.c_str(), mesh.numTriangles(), config_file.empty() ? "(defaults)" : config_file.c_str(),
-              tsdf.voxel_size, tsdf.truncationDistance(), meshed.truncationDistance(),
+              tsdf.voxel_size, tsdf.truncationDistance(), meshed.voxel_size, meshed.truncationDistance(),
               mesh_layer.separate() ? " (separate layer)" : " (the map itself)",
               meshed.weight_dropoff ? ", weight drop-off" : "", meshed.mesh_min_weight, rows.size(),
               path_file.c_str(), seed);
@@ -324,7 +325,7 @@ int main(int argc, char** argv) {
   json.beginObject().value("path", path_file).value("scene", config.scene.scene).value("config", config_file);
   json.value("seed", seed).value("threads", config.threads).value("voxel_size_m", tsdf.voxel_size);
   json.value("truncation_m", tsdf.truncationDistance()).value("mesh_layer", mesh_layer.separate());
-  json.value("mesh_truncation_m", meshed.truncationDistance()).value("mesh_weight_dropoff", meshed.weight_dropoff);
+  json.value("mesh_voxel_size_m", meshed.voxel_size).value("mesh_truncation_m", meshed.truncationDistance()).value("mesh_weight_dropoff", meshed.weight_dropoff);
   json.value("mesh_min_weight", static_cast<double>(meshed.mesh_min_weight));
   json.value("w_th", static_cast<double>(tsdf.w_th)).value("weight_scale", integrator.weightScale());
   json.value("frames", rows.size()).value("triangles", reconstruction.numTriangles());

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <memory>
@@ -219,6 +220,45 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
     }
   }
   expectSameVoxels(serial.map, side.map);
+}
+
+// The layer fused behind the caller (integrateDepthBehind, what nbv_mission
+// does) ends voxel for voxel as fused in line, even when the caller
+// overwrites its depth image at once; a bad frame is the planning map's
+// error at once.
+TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
+  b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
+  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  ASSERT_NE(scene, nullptr);
+  const DepthCamera camera = smallCamera();
+  const DepthRenderer renderer(*scene, camera, 1);
+  TsdfConfig config = layeredConfig();
+  config.mesh_voxel_size = 0.05;
+  LayeredMap serial(config), behind(config);
+  behind.integrator.setThreads(3);
+  DepthImage depth;
+  for (int k = 0; k < 6; ++k) {
+    const double dir = k % 2 == 0 ? 1.0 : -1.0;
+    const Transform T = lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
+    renderer.render(T, &depth);
+    ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
+    IntegrationStats stats;
+    ASSERT_TRUE(behind.layer.integrateDepthBehind(&behind.integrator, camera, depth, T, 2, &stats).ok());
+    EXPECT_GT(stats.voxels_updated, 0u);
+    std::fill(depth.data.begin(), depth.data.end(), 1.0f);  // the caller reuses its buffer at once
+  }
+  ASSERT_TRUE(behind.layer.finish().ok());
+  EXPECT_GT(serial.layer.map().numBlocks(), 10u);
+  expectSameVoxels(serial.map, behind.map);
+  expectSameVoxels(serial.layer.map(), behind.layer.map());
+  EXPECT_EQ(behind.integrator.threads(), 3);
+  const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
+  const Status s = behind.layer.integrateDepthBehind(&behind.integrator, camera, depth, outside, 2);
+  EXPECT_NE(s.message().find("outside the map bounds"), std::string::npos) << s.message();
+  EXPECT_TRUE(behind.layer.finish().ok());  // nothing was left in flight
+  expectSameVoxels(serial.layer.map(), behind.layer.map());
 }
 
 TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {

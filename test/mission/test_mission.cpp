@@ -76,14 +76,13 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
   const MissionConfig& plant = configs["powerplant"];
   expectTable1(statue, kStatue);
   expectTable1(plant, kPowerplant);
-  // Both mesh a layer with the drop-off (the plant's of 0.1 m voxels and
-  // 0.6 m of truncation, the statue's of the map's voxels and 3 of them),
-  // both plan on 3 voxels with full weights, both tours keep viewpoints that
-  // see 3 ISEs.
+  // Both mesh a layer with the drop-off and voxels of a third (the plant's)
+  // or half (the statue's) of the planning map's, both plan on 3 voxels with
+  // full weights, both tours keep viewpoints that see 3 ISEs.
   EXPECT_DOUBLE_EQ(plant.tsdf.mesh_truncation, 0.6);
   EXPECT_DOUBLE_EQ(plant.tsdf.meshLayerConfig().voxel_size, 0.1);
-  EXPECT_DOUBLE_EQ(statue.tsdf.mesh_truncation, 3.0 * statue.tsdf.voxel_size);
-  EXPECT_DOUBLE_EQ(statue.tsdf.meshLayerConfig().voxel_size, statue.tsdf.voxel_size);
+  EXPECT_DOUBLE_EQ(statue.tsdf.mesh_truncation, 0.45);
+  EXPECT_DOUBLE_EQ(statue.tsdf.meshLayerConfig().voxel_size, 0.075);
   for (const MissionConfig* c : {&statue, &plant}) {
     EXPECT_TRUE(c->tsdf.hasMeshLayer());
     EXPECT_TRUE(c->tsdf.meshLayerConfig().weight_dropoff);

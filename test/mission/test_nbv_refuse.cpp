@@ -158,6 +158,18 @@ TEST_F(NbvRefuse, TheMeshTruncationChangesTheMesh) {
   bool differ = a.vertices.size() != b.vertices.size() || a.triangles.size() != b.triangles.size();
   for (size_t i = 0; !differ && i < a.vertices.size(); ++i) differ = !a.vertices[i].isApprox(b.vertices[i], 1e-6f);
   EXPECT_TRUE(differ);
+  EXPECT_DOUBLE_EQ(jsonNumber(json, "mesh_voxel_size_m"), 0.3);
+  // A layer of half the voxels: twice as many vertices along each surface,
+  // about four times as many in all.
+  const fs::path fine = dir_ / "fine";
+  const ToolRun f = run(common + " --mesh-voxel-size 0.15 --mesh-truncation 0.45 --out " + fine.string());
+  ASSERT_EQ(f.code, 0) << f.out << f.err;
+  const std::string fine_json = readText(fine / "refuse.json");
+  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "mesh_voxel_size_m"), 0.15);
+  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "voxel_size_m"), 0.3);
+  TriangleMesh c;
+  ASSERT_TRUE(loadMesh((fine / "reconstruction.ply").string(), MeshLoadOptions(), &c).ok());
+  EXPECT_GT(c.vertices.size(), 3 * a.vertices.size());
 }
 
 TEST_F(NbvRefuse, RefusesBadInputsNamingThem) {
@@ -188,6 +200,8 @@ TEST_F(NbvRefuse, RefusesBadInputsNamingThem) {
       {box + outside, "camera pose is outside the map bounds"},
       {box + good + " --truncation 0.01", "truncation expected >= voxel_size"},
       {box + good + " --mesh-truncation -1", "mesh_truncation expected 0 (mesh the map itself) or >= the mesh layer's voxel size"},
+      {box + good + " --mesh-truncation 0.1 --mesh-voxel-size 0.15", "or >= the mesh layer's voxel size"},
+      {box + good + " --mesh-voxel-size -0.1 --mesh-truncation 0.3", "mesh_voxel_size expected >= 0"},
       {box + good + " --mesh-min-weight 1e40", "--mesh-min-weight expects a finite number"},
       {box + good + " --truncation abc", "--truncation expects a number, got 'abc'"},
       {box + good + " --threads 0", "mission/threads expected in [1, 64]"},

@@ -15,7 +15,10 @@
 // Feed it every frame the planning map gets, with the same weight scale.
 #pragma once
 
+#include <chrono>
+#include <future>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "surface_nbv/map/tsdf_integrator.h"
@@ -28,6 +31,9 @@ class MeshLayer {
   // planning: the map every frame is also integrated into (not owned; must
   // outlive this object). Its config decides whether a separate layer exists.
   explicit MeshLayer(const TsdfMap* planning);
+  ~MeshLayer();  // waits for a fusion in flight (integrateDepthBehind)
+  MeshLayer(const MeshLayer&) = delete;
+  MeshLayer& operator=(const MeshLayer&) = delete;
 
   // True when this layer is a TSDF of its own (mesh_truncation in effect).
   bool separate() const { return map_ != nullptr; }
@@ -48,6 +54,26 @@ class MeshLayer {
   Status integrateDepthWith(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
                             const Transform& T_W_C, int threads, IntegrationStats* stats = nullptr,
                             Status* layer = nullptr);
+  // The same frame as integrateDepthWith(), but the layer's fusion runs on a
+  // thread of its own while the caller goes on: the planning map is fused
+  // on the calling thread (threads - 1 of them), after the layer's fusion of
+  // the previous frame has ended; then this frame's starts, on copies of
+  // `camera` and `depth`. The layer takes the same frames in the same order,
+  // so it ends voxel for voxel as integrateDepthWith() leaves it. The
+  // layer's failure on the previous frame goes to *layer when given (the
+  // planning map's status is returned), else it is returned unless the
+  // planning map failed. Call finish() before reading map(); every other
+  // method and the destructor call it first.
+  Status integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
+                              const Transform& T_W_C, int threads, IntegrationStats* stats = nullptr,
+                              Status* layer = nullptr);
+  // Waits for the layer's fusion in flight; its status (Ok when none).
+  Status finish();
+  // Whether a fusion is still in flight (a real-time caller may fuse the
+  // next frame into the planning map alone instead of waiting).
+  bool busy() const {
+    return behind_.valid() && behind_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
+  }
   Status markFree(const Eigen::Vector3d& center, double radius);
   void setWeightScale(double scale);
   // After the planning map was loaded from `path`: the layer starts again
@@ -60,6 +86,9 @@ class MeshLayer {
   const TsdfMap* planning_;
   std::unique_ptr<TsdfMap> map_;
   std::unique_ptr<TsdfIntegrator> integrator_;
+  std::future<Status> behind_;  // the layer's fusion in flight
+  DepthImage behind_depth_;      // its frame
+  std::optional<DepthCamera> behind_camera_;
 };
 
 }  // namespace surface_nbv

@@ -64,6 +64,8 @@ class TsdfMapperServer {
 
   void publishUpdate();
   void publishMesh();
+  // Waits for the mesh layer's fusion in flight; counts and logs a failure.
+  void finishMeshLayer();
   void publishStats();
   // Writes the older of the two autosave slots (atomic: saveMap writes a
   // temporary file, syncs and renames), so the newest two snapshots remain.
