@@ -13,6 +13,8 @@
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/mesh_builder.h"
 
+#include "../sim/render_test_helpers.h"  // lookAlong
+
 using namespace surface_nbv;
 
 namespace {
@@ -176,15 +178,26 @@ void expectSameVoxels(const TsdfMap& a, const TsdfMap& b) {
   EXPECT_EQ(differing, 0u);
 }
 
+// The thin wall with a cube beyond it, for the tests of fusion order.
+std::unique_ptr<RaycastScene> wallAndCube() {
+  MeshBuilder b;
+  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
+  b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
+  return sceneOf(&b);
+}
+
+// View k of those tests: from either side in turn, moving a little each time.
+Transform alternatingView(int k) {
+  const double dir = k % 2 == 0 ? 1.0 : -1.0;
+  return lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
+}
+
 }  // namespace
 
 // Fusing the planning map and the layer side by side on two threads leaves
 // both exactly as fusing them one after the other; a bad frame fails both.
 TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
-  MeshBuilder b;
-  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
-  b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
-  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  const std::unique_ptr<RaycastScene> scene = wallAndCube();
   ASSERT_NE(scene, nullptr);
   const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
@@ -194,8 +207,7 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   side.integrator.setThreads(3);  // the caller's own count, kept across the frames
   DepthImage depth;
   for (int k = 0; k < 6; ++k) {
-    const double dir = k % 2 == 0 ? 1.0 : -1.0;
-    const Transform T = lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
+    const Transform T = alternatingView(k);
     renderer.render(T, &depth);
     IntegrationStats stats;
     ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
@@ -227,10 +239,7 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
 // overwrites its depth image at once; a bad frame is the planning map's
 // error at once.
 TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
-  MeshBuilder b;
-  b.addBox(Eigen::Vector3d(0.5 * (kFront + kBack), 0, 0), Eigen::Vector3d(kBack - kFront, 1.5, 1.5));
-  b.addBox(Eigen::Vector3d(7.5, 0.8, 0.3), Eigen::Vector3d(0.6, 0.6, 0.6));
-  const std::unique_ptr<RaycastScene> scene = sceneOf(&b);
+  const std::unique_ptr<RaycastScene> scene = wallAndCube();
   ASSERT_NE(scene, nullptr);
   const DepthCamera camera = smallCamera();
   const DepthRenderer renderer(*scene, camera, 1);
@@ -240,8 +249,7 @@ TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
   behind.integrator.setThreads(3);
   DepthImage depth;
   for (int k = 0; k < 6; ++k) {
-    const double dir = k % 2 == 0 ? 1.0 : -1.0;
-    const Transform T = lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
+    const Transform T = alternatingView(k);
     renderer.render(T, &depth);
     ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
     IntegrationStats stats;
@@ -314,18 +322,6 @@ TEST(MeshLayer, FinerVoxelsMakeALayerOfTheirOwn) {
 
 namespace {
 
-// Optical frame at `position` looking at `target` (world z up, image y down).
-Transform lookingAt(const Eigen::Vector3d& position, const Eigen::Vector3d& target) {
-  const Eigen::Vector3d z = (target - position).normalized();
-  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
-  Transform T = Transform::Identity();
-  T.linear().col(0) = x;
-  T.linear().col(1) = z.cross(x);
-  T.linear().col(2) = z;
-  T.translation() = position;
-  return T;
-}
-
 // Mean distance from points along a vertical edge (x0, y0, z in [-1, 1]) to
 // the nearest vertex of `mesh`.
 double edgeGap(const TriangleMesh& mesh, double x0, double y0) {
@@ -366,7 +362,7 @@ TEST(MeshLayer, FinerLayerFollowsAConvexEdge) {
   for (double deg = 150.0; deg <= 300.0; deg += 15.0) {  // around the corner, 3 m away
     const double a = deg * M_PI / 180.0;
     const Eigen::Vector3d from = corner + 3.0 * Eigen::Vector3d(std::cos(a), std::sin(a), 0.1);
-    const Transform T = lookingAt(from, corner);
+    const Transform T = render_test::lookAlong(from, corner - from);
     renderer.render(T, &depth);
     ASSERT_TRUE(m.layer.integrateDepthWith(&m.integrator, camera, depth, T, 1).ok());
   }

@@ -158,15 +158,15 @@ TEST_F(NbvRefuse, TheMeshTruncationChangesTheMesh) {
   bool differ = a.vertices.size() != b.vertices.size() || a.triangles.size() != b.triangles.size();
   for (size_t i = 0; !differ && i < a.vertices.size(); ++i) differ = !a.vertices[i].isApprox(b.vertices[i], 1e-6f);
   EXPECT_TRUE(differ);
-  EXPECT_DOUBLE_EQ(jsonNumber(json, "mesh_voxel_size_m"), 0.3);
+  EXPECT_DOUBLE_EQ(jsonNumber(json, "mesh_voxel_size_m"), 0.1);
   // A layer of half the voxels: twice as many vertices along each surface,
   // about four times as many in all.
   const fs::path fine = dir_ / "fine";
-  const ToolRun f = run(common + " --mesh-voxel-size 0.15 --mesh-truncation 0.45 --out " + fine.string());
+  const ToolRun f = run(common + " --mesh-voxel-size 0.05 --mesh-truncation 0.15 --out " + fine.string());
   ASSERT_EQ(f.code, 0) << f.out << f.err;
   const std::string fine_json = readText(fine / "refuse.json");
-  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "mesh_voxel_size_m"), 0.15);
-  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "voxel_size_m"), 0.3);
+  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "mesh_voxel_size_m"), 0.05);
+  EXPECT_DOUBLE_EQ(jsonNumber(fine_json, "voxel_size_m"), 0.1);
   TriangleMesh c;
   ASSERT_TRUE(loadMesh((fine / "reconstruction.ply").string(), MeshLoadOptions(), &c).ok());
   EXPECT_GT(c.vertices.size(), 3 * a.vertices.size());
