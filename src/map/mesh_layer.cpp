@@ -19,8 +19,9 @@ MeshLayer::~MeshLayer() { finish(); }
 Status MeshLayer::finish() { return behind_.valid() ? behind_.get() : Status::Ok(); }
 
 Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
-  if (Status s = finish(); !s) return s;
-  return integrator_ ? integrator_->integrateDepth(camera, depth, T_W_C) : Status::Ok();
+  const Status previous = finish();
+  const Status s = integrator_ ? integrator_->integrateDepth(camera, depth, T_W_C) : Status::Ok();
+  return previous ? s : previous;
 }
 
 Status MeshLayer::integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
@@ -57,7 +58,7 @@ Status MeshLayer::integrateDepthBehind(TsdfIntegrator* planning, const DepthCame
 
 Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
                                      const Transform& T_W_C, int threads, IntegrationStats* stats, Status* layer) {
-  if (Status s = finish(); !s) return s;
+  const Status previous = finish();  // a failure of the layer behind, reported as the layer's
   Status planned, layered;
   if (!integrator_ || threads < 2) {
     planned = planning->integrateDepth(camera, depth, T_W_C, stats);
@@ -77,6 +78,7 @@ Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera
     planning->setThreads(planning_threads);
     integrator_->setThreads(layer_threads);
   }
+  if (!previous) layered = previous;
   if (layer != nullptr) {
     *layer = layered;
     return planned;
@@ -86,13 +88,15 @@ Status MeshLayer::integrateDepthWith(TsdfIntegrator* planning, const DepthCamera
 
 Status MeshLayer::integratePoints(const std::vector<Eigen::Vector3f>& points_S, const Transform& T_W_S,
                                   double max_range) {
-  if (Status s = finish(); !s) return s;
-  return integrator_ ? integrator_->integratePoints(points_S, T_W_S, max_range) : Status::Ok();
+  const Status previous = finish();
+  const Status s = integrator_ ? integrator_->integratePoints(points_S, T_W_S, max_range) : Status::Ok();
+  return previous ? s : previous;
 }
 
 Status MeshLayer::markFree(const Eigen::Vector3d& center, double radius) {
-  if (Status s = finish(); !s) return s;
-  return integrator_ ? integrator_->markFree(center, radius) : Status::Ok();
+  const Status previous = finish();
+  const Status s = integrator_ ? integrator_->markFree(center, radius) : Status::Ok();
+  return previous ? s : previous;
 }
 
 void MeshLayer::setWeightScale(double scale) {
