@@ -41,7 +41,7 @@ float prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear
 }  // namespace
 
 size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, float truncation,
-                         InvalidPixelPolicy policy, int threads) {
+                         InvalidPixelPolicy policy, int threads, bool nearest) {
   const int W = depth.width, H = depth.height;
   const float min_range = static_cast<float>(camera.config().min_range);
   const float max_range = static_cast<float>(camera.config().max_range);
@@ -56,7 +56,11 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
   base.width = (W + kTile - 1) / kTile;
   base.height = (H + kTile - 1) / kTile;
   base.max_depth.assign(static_cast<size_t>(base.width) * base.height, kNone);
-  base.min_depth.assign(static_cast<size_t>(base.width) * base.height, kInf);
+  if (nearest) {
+    base.min_depth.assign(static_cast<size_t>(base.width) * base.height, kInf);
+  } else {
+    base.min_depth.clear();
+  }
 
   // Pass 1, by bands of tile rows: usable depth, the silhouette key, the
   // farthest reach of each pixel (max range for cleared ones), tile maxima
@@ -69,7 +73,7 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     const int width = W;
     const int v_end = std::min(H, static_cast<int>(ty + 1) * kTile);
     float* tile_max = &base.max_depth[ty * base.width];
-    float* tile_min = &base.min_depth[ty * base.width];
+    float* tile_min = nearest ? &base.min_depth[ty * base.width] : nullptr;
     std::vector<float> reach_row(static_cast<size_t>(W));
     float* reach = reach_row.data();
     for (int v = static_cast<int>(ty) * kTile; v < v_end; ++v) {
@@ -81,10 +85,12 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
       invalid[ty] += static_cast<size_t>(bad);
       for (int u0 = 0, tx = 0; u0 < width; u0 += kTile, ++tx) {
         const int u1 = std::min(width, u0 + kTile);
-        float m = tile_max[tx], near = tile_min[tx];
+        float m = tile_max[tx];
         for (int u = u0; u < u1; ++u) m = std::max(m, reach[u]);
-        for (int u = u0; u < u1; ++u) near = std::min(near, out[u]);  // std::min keeps `near` for a NaN
         tile_max[tx] = m;
+        if (tile_min == nullptr) continue;
+        float near = tile_min[tx];
+        for (int u = u0; u < u1; ++u) near = std::min(near, out[u]);  // std::min keeps `near` for a NaN
         tile_min[tx] = near;
       }
     }
@@ -121,13 +127,13 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     coarse.width = (fine.width + 1) / 2;
     coarse.height = (fine.height + 1) / 2;
     coarse.max_depth.assign(static_cast<size_t>(coarse.width) * coarse.height, kNone);
-    coarse.min_depth.assign(static_cast<size_t>(coarse.width) * coarse.height, kInf);
+    coarse.min_depth.assign(nearest ? static_cast<size_t>(coarse.width) * coarse.height : 0, kInf);
     for (int y = 0; y < fine.height; ++y) {
       for (int x = 0; x < fine.width; ++x) {
         const size_t to = static_cast<size_t>(y / 2) * coarse.width + x / 2;
         const size_t from = static_cast<size_t>(y) * fine.width + x;
         coarse.max_depth[to] = std::max(coarse.max_depth[to], fine.max_depth[from]);
-        coarse.min_depth[to] = std::min(coarse.min_depth[to], fine.min_depth[from]);
+        if (nearest) coarse.min_depth[to] = std::min(coarse.min_depth[to], fine.min_depth[from]);
       }
     }
   }
@@ -168,6 +174,7 @@ float DepthIndex::maxDepthOver(int u0, int v0, int u1, int v1) const {
 float DepthIndex::minDepthOver(int u0, int v0, int u1, int v1) const {
   Eigen::Vector4i c;
   const Level& l = coverLevel(levels_, u0, v0, u1, v1, &c);
+  if (l.min_depth.empty()) return -kInf;  // not built: no bound
   float m = kInf;
   for (int y = c[1]; y <= c[3]; ++y) {
     for (int x = c[0]; x <= c[2]; ++x) m = std::min(m, l.min_depth[static_cast<size_t>(y) * l.width + x]);

@@ -146,7 +146,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   const float trunc = static_cast<float>(cfg.truncationDistance());
   const float max_range = static_cast<float>(camera.config().max_range);
   const float far = max_range + trunc;
-  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, threads());
+  stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, threads(), cfg.band_allocation);
   const std::vector<TsdfBlock*> work = candidateBlocks(camera, T_W_C, &stats);
 
   // Projective update of every voxel of the candidate blocks.

@@ -82,7 +82,7 @@ TEST(DepthIndex, MatchesThePerPixelReference) {
     for (int threads : {1, 2}) {
       for (float truncation : {0.3f, 1.0f}) {
         DepthIndex index;
-        const size_t invalid = index.build(camera, depth, truncation, policy, threads);
+        const size_t invalid = index.build(camera, depth, truncation, policy, threads, /*nearest=*/true);
         const Reference r = reference(camera, depth, truncation, policy);
         EXPECT_EQ(invalid, r.invalid);
         size_t usable_diff = 0, silhouette_diff = 0, silhouettes = 0;
@@ -108,6 +108,11 @@ TEST(DepthIndex, MatchesThePerPixelReference) {
         for (float x : r.usable)
           if (std::isfinite(x)) nearest = std::min(nearest, x);
         EXPECT_EQ(index.minDepthOver(0, 0, config.width - 1, config.height - 1), nearest);
+        // Without the min pyramid (the planning map's builds) there is no bound.
+        DepthIndex plain;
+        plain.build(camera, depth, truncation, policy, threads);
+        EXPECT_EQ(plain.minDepthOver(0, 0, config.width - 1, config.height - 1), -kInf);
+        EXPECT_EQ(plain.maxDepthOver(0, 0, config.width - 1, config.height - 1), largest);
         std::mt19937 rng(threads);
         for (int k = 0; k < 200; ++k) {
           int u0 = rng() % config.width, u1 = rng() % config.width, v0 = rng() % config.height,

@@ -21,8 +21,9 @@ class DepthIndex {
  public:
   // Returns the number of invalid pixels (NaN, +-Inf, zero, outside the
   // range); `policy` says which of them clear free space up to max range.
+  // The min-depth pyramid is built only with `nearest` (band allocation).
   size_t build(const DepthCamera& camera, const DepthImage& depth, float truncation, InvalidPixelPolicy policy,
-               int threads);
+               int threads, bool nearest = false);
 
   float usable(size_t pixel) const { return usable_[pixel]; }
   bool silhouette(size_t pixel) const { return silhouette_[pixel] != 0; }
@@ -32,7 +33,8 @@ class DepthIndex {
   // cleared pixels), or -inf when none can; an upper bound, never less.
   float maxDepthOver(int u0, int v0, int u1, int v1) const;
   // Nearest measured depth in the rectangle (cleared pixels do not count),
-  // or +inf when it holds none; a lower bound, never more.
+  // or +inf when it holds none; a lower bound, never more. -inf when the
+  // last build() skipped the pyramid.
   float minDepthOver(int u0, int v0, int u1, int v1) const;
 
  private:
