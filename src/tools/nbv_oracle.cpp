@@ -6,11 +6,16 @@
 //
 //   nbv_oracle --scene plant|statue|FILE [--config YAML] [--seed S] [--out DIR]
 //              [--threads N] [--target-spacing M] [--candidate-spacing M] [--max-candidates N]
-//              [--path-iterations N]
+//              [--path-iterations N] [--cover-fraction F]
 //              [--online-path M] [--online-min MIN]
 //
 // Writes DIR/oracle.json, oracle.md, oracle_path.csv and oracle_uncoverable.csv
-// (the targets no candidate sees; default DIR: output/oracle_<scene>). With --online-path / --online-min (an nbv_mission
+// (the targets no candidate sees; default DIR: output/oracle_<scene>), and
+// oracle_flight.csv: the path timed at the mission's speed and yaw rate and
+// sampled at its frame rate, in nbv_mission's path.csv format, so that
+// `nbv_refuse --path DIR/oracle_flight.csv` fuses and evaluates the oracle's
+// flight as a mission's. --cover-fraction (0.99 by default) stops the greedy
+// cover at that share of the coverable targets: a shorter oracle flight. With --online-path / --online-min (an nbv_mission
 // trial's figures) the ratios online / oracle are printed and written too.
 #include <cmath>
 #include <cstdio>
@@ -19,6 +24,7 @@
 #include <iostream>
 
 #include "surface_nbv/mission/oracle_planner.h"
+#include "surface_nbv/tracking/trajectory.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
 
@@ -29,8 +35,8 @@ namespace {
 const char* kUsage =
     "usage: nbv_oracle --scene plant|statue|FILE [--config YAML] [--seed S] [--out DIR] [--threads N]\n"
     "                  [--target-spacing M] [--candidate-spacing M] [--max-candidates N] [--path-iterations N]\n"
-    "                  [--online-path M] [--online-min MIN] [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z]\n"
-    "                  [--crop-max X,Y,Z]\n"
+    "                  [--cover-fraction F] [--online-path M] [--online-min MIN] [--scale S] [--offset X,Y,Z]\n"
+    "                  [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
     "  --config defaults to config/<scene name>.yaml of the package when it exists.\n";
 
 int fail(const std::string& message) {
@@ -51,6 +57,27 @@ Status writePath(const std::string& file, const OracleResult& r) {
   return out ? Status::Ok() : Status::Error("cannot write " + file);
 }
 
+// The path timed as the oracle times it and sampled every 1 / frame_rate s,
+// in nbv_mission's path.csv format (t_s,x_m,y_m,z_m,yaw_rad).
+Status writeFlight(const std::string& file, const OracleResult& r, const OracleConfig& config, double frame_rate) {
+  std::vector<Waypoint> waypoints;
+  for (const Eigen::Vector4d& q : r.path) waypoints.push_back({q.head<3>(), q.w()});
+  const Trajectory timed = timeWaypoints(waypoints, 0.0, config.speed, config.yaw_rate);
+  std::ofstream out(file);
+  out << "t_s,x_m,y_m,z_m,yaw_rad\n";
+  out.precision(10);
+  if (timed.empty()) return out ? Status::Ok() : Status::Error("cannot write " + file);
+  // Frames every 1 / frame_rate s from 0, and one at the end (the last viewpoint).
+  const double end = timed.endTime();
+  for (size_t i = 0;; ++i) {
+    const double t = std::min(end, i / frame_rate);
+    const TrajectorySample q = timed.sample(t);
+    out << t << "," << q.p_W.x() << "," << q.p_W.y() << "," << q.p_W.z() << "," << q.yaw << "\n";
+    if (t >= end - 1e-9) break;
+  }
+  return out ? Status::Ok() : Status::Error("cannot write " + file);
+}
+
 Status writePoints(const std::string& file, const std::vector<Eigen::Vector3d>& points) {
   std::ofstream out(file);
   out << "x_m,y_m,z_m\n";
@@ -63,7 +90,8 @@ Status writePoints(const std::string& file, const std::vector<Eigen::Vector3d>& 
 int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(), {"config", "seed", "out", "threads", "target-spacing", "candidate-spacing",
-                                 "max-candidates", "path-iterations", "online-path", "online-min"});
+                                 "max-candidates", "path-iterations", "cover-fraction", "online-path",
+                                 "online-min"});
   CliArgs args(options, {"help"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -81,6 +109,7 @@ int main(int argc, char** argv) {
                            args.getDouble("candidate-spacing", &config.candidate_spacing),
                            args.getInt("max-candidates", &max_candidates),
                            args.getInt("path-iterations", &config.path_iterations),
+                           args.getDouble("cover-fraction", &config.cover_fraction),
                            args.getDouble("online-path", &online_path), args.getDouble("online-min", &online_min)};
   for (const Status& s : parsed)
     if (!s) return fail(s.message());
@@ -113,6 +142,9 @@ int main(int argc, char** argv) {
   if (!r.status) return fail(r.status.message());
   if (Status s = writePath(out_dir + "/oracle_path.csv", r); !s) return fail(s.message());
   if (Status s = writePoints(out_dir + "/oracle_uncoverable.csv", r.uncoverable); !s) return fail(s.message());
+  if (Status s = writeFlight(out_dir + "/oracle_flight.csv", r, config, mission.frame_rate); !s) {
+    return fail(s.message());
+  }
 
   const double flight_min = r.flight_time / 60.0, wall_s = r.times.total / 1000.0;
   const double path_ratio = online_path > 0.0 ? online_path / r.path_length : NAN;
@@ -121,6 +153,7 @@ int main(int argc, char** argv) {
   json.beginObject().value("scene", mission.scene.scene).value("config", config_file).value("seed", seed);
   json.value("voxel_size_m", config.tsdf.voxel_size).value("delta_pose_m", config.delta_pose);
   json.value("collision_radius_m", config.path.collision_radius).value("target_spacing_m", config.target_spacing);
+  json.value("cover_fraction_goal", config.cover_fraction);
   json.value("candidate_spacing_m", config.candidate_spacing).value("targets", r.targets);
   json.value("coverable", r.coverable).value("uncoverable", r.uncoverable.size()).value("covered", r.covered);
   json.value("covered_fraction", r.coveredFraction()).value("candidates_built", r.candidates_built);
@@ -145,7 +178,8 @@ int main(int argc, char** argv) {
   std::ofstream md(out_dir + "/oracle.md");
   md << "# Oracle reference on `" << mission.scene.scene << "` (seed " << seed << ")\n\nConfig: `" << config_file
      << "`, voxel " << config.tsdf.voxel_size << " m, delta_pose " << config.delta_pose << " m, radius "
-     << config.path.collision_radius << " m, targets every " << config.target_spacing << " m.\n\n"
+     << config.path.collision_radius << " m, targets every " << config.target_spacing << " m, cover goal "
+     << 100.0 * config.cover_fraction << " %.\n\n"
      << "| targets | coverable | chosen viewpoints | covered [%] | straight tour [m] | path [m] | flight [min] | "
         "failed legs | wall [s] |\n|---|---|---|---|---|---|---|---|---|\n";
   std::snprintf(line, sizeof(line), "| %zu | %zu | %zu | %.2f | %.1f | %.1f | %.1f | %zu | %.1f |\n", r.targets,
@@ -163,6 +197,7 @@ int main(int argc, char** argv) {
               r.tour_length, flight_min, r.failed_legs, wall_s);
   if (online_path > 0.0 || online_min > 0.0)
     std::printf("online / oracle: path %.2f, flight time %.2f\n", path_ratio, time_ratio);
-  std::printf("wrote %s/oracle.json, oracle.md, oracle_path.csv, oracle_uncoverable.csv\n", out_dir.c_str());
+  std::printf("wrote %s/oracle.json, oracle.md, oracle_path.csv, oracle_flight.csv, oracle_uncoverable.csv\n",
+              out_dir.c_str());
   return r.failed_legs == 0 ? 0 : 1;
 }

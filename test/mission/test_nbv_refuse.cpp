@@ -2,17 +2,20 @@
 // poses around the box scene fused and evaluated, the mesh layer's
 // truncation changing the mesh, the coverage of what the camera saw
 // (--observed), and every kind of bad input refused with
-// exit code 2 and a message naming it.
+// exit code 2 and a message naming it. Also nbv_oracle's flight file, which
+// nbv_refuse fuses as a mission's, and its --cover-fraction.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "surface_nbv/sim/mesh_io.h"
 
@@ -68,9 +71,11 @@ class NbvRefuse : public ::testing::Test {
     return write("circle.csv", csv.str());
   }
 
-  ToolRun run(const std::string& arguments) {
+  // Runs nbv_refuse, or another tool built beside it.
+  ToolRun run(const std::string& arguments, const std::string& tool = "nbv_refuse") {
+    const std::string exe = (fs::path(exe_).parent_path() / tool).string();
     const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
-    const int status = std::system((exe_ + " " + arguments + " > " + out + " 2> " + err).c_str());
+    const int status = std::system((exe + " " + arguments + " > " + out + " 2> " + err).c_str());
     ToolRun r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = readText(out);
@@ -170,6 +175,73 @@ TEST_F(NbvRefuse, TheMeshTruncationChangesTheMesh) {
   TriangleMesh c;
   ASSERT_TRUE(loadMesh((fine / "reconstruction.ply").string(), MeshLoadOptions(), &c).ok());
   EXPECT_GT(c.vertices.size(), 3 * a.vertices.size());
+}
+
+// nbv_oracle writes its flight timed at the mission's speed and sampled at
+// its frame rate (box.yaml: 5 Hz), which nbv_refuse fuses and evaluates as a
+// mission's; a lower --cover-fraction flies fewer viewpoints over a shorter
+// path and covers less.
+TEST_F(NbvRefuse, FusesTheOraclesFlight) {
+  ASSERT_TRUE(fs::exists(exe_)) << exe_;
+  struct Oracle {
+    double path_m, flight_s, viewpoints, covered, coverage;
+  };
+  auto fly = [&](const std::string& name, const std::string& extra) {
+    Oracle o{NAN, NAN, NAN, NAN, NAN};
+    const fs::path out = dir_ / name;
+    const ToolRun r = run("--scene box --config " + config_ + " --threads 1 --out " + out.string() + extra, "nbv_oracle");
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    const std::string json = readText(out / "oracle.json");
+    o.path_m = jsonNumber(json, "path_length_m");
+    o.flight_s = jsonNumber(json, "flight_time_s");
+    o.viewpoints = jsonNumber(json, "viewpoints");
+    o.covered = jsonNumber(json, "covered_fraction");
+    // The flight file: the header, a frame every 0.2 s from the start pose,
+    // the last one at the flight's end.
+    std::ifstream csv(out / "oracle_flight.csv");
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "t_s,x_m,y_m,z_m,yaw_rad");
+    std::vector<double> t;
+    Eigen::Vector3d first = Eigen::Vector3d::Constant(NAN);
+    while (std::getline(csv, line)) {
+      double v[5];
+      EXPECT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4]), 5) << line;
+      if (t.empty()) first << v[1], v[2], v[3];
+      t.push_back(v[0]);
+    }
+    EXPECT_GT(t.size(), 10u);
+    if (t.size() < 2) return o;
+    EXPECT_EQ(t.front(), 0.0);
+    EXPECT_TRUE(first.isApprox(Eigen::Vector3d(-5, 0, 2), 1e-9)) << first.transpose();  // box.yaml's start
+    for (size_t i = 1; i + 1 < t.size(); ++i) EXPECT_NEAR(t[i] - t[i - 1], 0.2, 1e-9) << "frame " << i;
+    EXPECT_GT(t.back() - t[t.size() - 2], 0.0);
+    EXPECT_LE(t.back() - t[t.size() - 2], 0.2 + 1e-9);
+    EXPECT_NEAR(t.back(), o.flight_s, 1e-6);
+    const ToolRun f = run("--scene box --config " + config_ + " --path " + (out / "oracle_flight.csv").string() +
+                          " --out " + (out / "refuse").string());
+    EXPECT_EQ(f.code, 0) << f.out << f.err;
+    o.coverage = jsonNumber(readText(out / "refuse" / "refuse.json"), "coverage");
+    return o;
+  };
+  const Oracle full = fly("full", "");
+  const Oracle half = fly("half", " --cover-fraction 0.5");
+  // The whole box (measured: 9 viewpoints, 99.08 % of the oracle's targets,
+  // 31.5 m) against half of it (3 viewpoints, 59.94 %, 17.6 m).
+  EXPECT_GE(full.covered, 0.99);
+  EXPECT_GE(half.covered, 0.5);
+  EXPECT_LT(half.covered, full.covered);
+  EXPECT_LT(half.viewpoints, full.viewpoints);
+  EXPECT_LT(half.path_m, full.path_m);
+  EXPECT_LT(half.flight_s, full.flight_s);
+  // The evaluation's coverage of the fused flights (measured 99.79 % and
+  // 62.73 %: the camera sees more than the oracle's strict targets).
+  EXPECT_GT(full.coverage, 0.97);
+  EXPECT_GT(half.coverage, half.covered - 0.05);
+  EXPECT_LT(half.coverage, 0.8);
+  const ToolRun bad = run("--scene box --config " + config_ + " --cover-fraction 1.5", "nbv_oracle");
+  EXPECT_EQ(bad.code, 2) << bad.out << bad.err;
+  EXPECT_NE(bad.err.find("cover_fraction expected in (0, 1]"), std::string::npos) << bad.err;
 }
 
 TEST_F(NbvRefuse, RefusesBadInputsNamingThem) {
