@@ -181,8 +181,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("travel_yaw", &c->explorer.travel_yaw);
   m.get("turn_distance", &c->explorer.turn_distance);
   m.get("turn_lead", &c->explorer.turn_lead);
-  m.get("cluster_cover", &c->explorer.cluster_cover);
-  m.get("look_aside", &c->explorer.look_aside);
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("head_lookahead", &c->explorer.head_lookahead);

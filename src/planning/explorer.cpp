@@ -7,7 +7,6 @@
 #include <unordered_map>
 
 #include "surface_nbv/map/collision_map.h"
-#include "surface_nbv/planning/cluster_cover.h"
 #include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
@@ -74,7 +73,6 @@ Status ExplorerConfig::validate() const {
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
-  if (!(look_aside >= 0.0) || !(look_aside <= M_PI)) return Status::Error("look_aside expected in [0, pi] rad");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
   if (gaze.enabled) {
     if (!travel_yaw) return Status::Error("gaze expects travel_yaw (it turns the yaws travel_yaw sets)");
@@ -184,20 +182,6 @@ Frontier Explorer::plannable(const Frontier& frontier) {
   }
   stats_.dropped_no_gain = dropped;
   if (f.clusters.empty() && config_.min_visible > 0) f = withoutBlacklisted(frontier, 0);
-  if (!config_.cluster_cover) return f;
-  // The tour's viewpoints are preferred, the current target most.
-  std::vector<char> preferred(f.viewpoints.size(), 0);
-  PointHash tour(config_.match_radius);
-  for (size_t k = 0; k < tour_.size(); ++k) tour.add(tour_[k].head<3>(), static_cast<int>(k));
-  for (size_t i = 0; i < f.viewpoints.size(); ++i) {
-    tour.any(f.viewpoints[i].position, config_.match_radius, [&](int k) {
-      preferred[i] = std::max<char>(preferred[i], k == 0 && have_target_ ? 2 : 1);
-      return false;
-    });
-  }
-  ClusterCoverStats cover;
-  f = coverClusters(f, preferred, static_cast<size_t>(std::max(1, config_.min_visible)), &cover);
-  stats_.dropped_by_cover = cover.dropped;
   return f;
 }
 
@@ -427,10 +411,6 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
     const Eigen::Vector2d step = p[i + 1].head<2>() - p[i].head<2>();
     if (step.norm() > 0.2) heading = std::atan2(step.y(), step.x());
     headings[i] = heading;
-  }
-  // Look aside, towards the target's yaw, by at most look_aside.
-  for (double& h : headings) {
-    h = wrapAngle(h + std::clamp(wrapAngle(target.w() - h), -config_.look_aside, config_.look_aside));
   }
   // Vertex i looks along segment i; the last segment turns to the target's yaw
   // over its final turn_distance metres (all of it when shorter).

@@ -57,8 +57,6 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("travel_yaw", &e->travel_yaw);
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);
-  r->get("cluster_cover", &e->cluster_cover);
-  r->get("look_aside", &e->look_aside);
   r->get("min_visible", &e->min_visible);
   r->get("head_lookahead", &e->head_lookahead);
   r->get("gaze", &e->gaze.enabled);

@@ -350,45 +350,6 @@ TEST(Explorer, TurnLeadTurnsWhileFlyingInsteadOfInPlace) {
   EXPECT_NE(bad.validate().message().find("turn_lead"), std::string::npos);
 }
 
-// look_aside: each vertex before the final turn looks from its direction of
-// travel towards the target's yaw, by at most look_aside; the leg is the same.
-TEST(Explorer, LookAsideTurnsTheTravelYawTowardsTheTarget) {
-  WallWorld world(true);
-  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
-  f.viewpoints[0].yaw = 2.0;
-  ExplorerConfig config;
-  config.travel_yaw = true;
-  config.turn_distance = 1.5;
-  Explorer straight(config, pathConfig());
-  config.look_aside = 0.3;
-  Explorer aside(config, pathConfig());
-  ASSERT_TRUE(straight.setMap(&world.collision(), world.bounds()).ok());
-  ASSERT_TRUE(aside.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision s = straight.update(f, kUav, false), a = aside.update(f, kUav, false);
-  ASSERT_EQ(s.action, ExplorerAction::kFly) << s.message;
-  ASSERT_EQ(a.action, ExplorerAction::kFly) << a.message;
-  ASSERT_EQ(a.path.size(), s.path.size());
-  ASSERT_GE(a.path.size(), 3u);
-  int turned = 0;
-  for (size_t i = 0; i < a.path.size(); ++i) {
-    EXPECT_TRUE(a.path[i].head<3>().isApprox(s.path[i].head<3>(), 1e-9)) << "vertex " << i;
-    if (i + 1 == a.path.size()) {
-      EXPECT_NEAR(a.path[i].w(), 2.0, 1e-9);
-      continue;
-    }
-    const double heading = s.path[i].w(), off = std::remainder(2.0 - heading, 2.0 * M_PI);
-    const double expected = heading + std::max(-0.3, std::min(0.3, off));
-    EXPECT_NEAR(std::remainder(a.path[i].w() - expected, 2.0 * M_PI), 0.0, 1e-9) << "vertex " << i;
-    turned += std::abs(off) > 0.3;
-  }
-  EXPECT_GT(turned, 0) << "the test needs a leg whose heading is more than 0.3 rad from the target's yaw";
-  ExplorerConfig bad;
-  bad.look_aside = -0.1;
-  EXPECT_NE(bad.validate().message().find("look_aside"), std::string::npos);
-  bad.look_aside = NAN;
-  EXPECT_NE(bad.validate().message().find("look_aside"), std::string::npos);
-}
-
 // full_on_leg_end: reaching a target recomputes the whole tour from the UAV
 // instead of keeping the old order.
 TEST(Explorer, FullOnLegEndRecomputesTheTourWhenATargetIsReached) {

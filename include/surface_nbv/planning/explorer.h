@@ -63,11 +63,6 @@ struct ExplorerConfig {
   // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
   // many metres per radian (speed / yaw rate turns at the full yaw rate).
   double turn_lead = 0.0;         // m/rad
-  // travel_yaw only: each segment looks from its direction of travel towards
-  // the target's yaw by at most this angle [rad], so that the camera sees the
-  // surface beside the leg while the way ahead stays in view (below half the
-  // horizontal FOV). 0: straight along the leg.
-  double look_aside = 0.0;        // rad
   // When a new target is due, the first head_lookahead tour viewpoints are
   // compared by eq. 5's utility for one viewpoint, |C_q| exp(-lambda_tc d),
   // d the straight distance from the UAV, and the best one is flown first
@@ -79,10 +74,6 @@ struct ExplorerConfig {
   GazeConfig gaze;
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
-  // Each cluster keeps only the viewpoints of a greedy cover of its ISEs
-  // (cluster_cover.h): the tour's own first, then while one adds at least
-  // max(1, min_visible) ISEs not yet seen.
-  bool cluster_cover = false;
   // While other viewpoints are in the tour, a viewpoint that faces less than
   // this share of unknown space (Viewpoint::unknown_fraction) does not join
   // it, and one that becomes the next target leaves it: leftovers wait until
@@ -164,7 +155,6 @@ struct ExplorerStats {
   size_t tour_viewpoints = 0, clusters = 0;
   size_t pooled = 0;            // pool_unknown_below: insertions skipped plus targets dropped
   size_t dropped_no_gain = 0;   // frontier viewpoints left out: fewer than min_visible ISEs in C_q
-  size_t dropped_by_cover = 0;  // cluster_cover: frontier viewpoints left out of the last update's clusters
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
