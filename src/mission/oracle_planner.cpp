@@ -344,8 +344,8 @@ void OraclePlanner::tour(OracleResult* r) {
   }
   std::vector<Waypoint> waypoints;
   for (const Eigen::Vector4d& q : r->path) waypoints.push_back({q.head<3>(), q.w()});
-  const Trajectory timed = timeWaypoints(waypoints, 0.0, config_.speed, config_.yaw_rate);
-  r->flight_time = timed.endTime() - timed.startTime();
+  r->timed = timeWaypoints(waypoints, 0.0, config_.speed, config_.yaw_rate);
+  r->flight_time = r->timed.endTime() - r->timed.startTime();
 }
 
 OracleResult OraclePlanner::plan() {

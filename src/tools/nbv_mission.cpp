@@ -21,6 +21,7 @@
 #include "surface_nbv/eval/surface_sampler.h"
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/map/mesh_extractor.h"
+#include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/flight_profile.h"
 #include "surface_nbv/mission/mission_runner.h"
 #include "surface_nbv/sim/mesh_io.h"
@@ -56,13 +57,7 @@ struct TrialRow {
 };
 
 Status writeCsvs(const std::string& dir, const MissionResult& r) {
-  std::ofstream path(dir + "/path.csv");
-  path.precision(10);  // nbv_refuse renders these poses again: keep them to well below a pixel
-  path << "t_s,x_m,y_m,z_m,yaw_rad\n";
-  for (size_t i = 0; i < r.flown.size(); ++i) {
-    const Eigen::Vector4d& q = r.flown[i];
-    path << r.flown_t[i] << "," << q.x() << "," << q.y() << "," << q.z() << "," << q.w() << "\n";
-  }
+  if (Status s = writeFlightCsv(dir + "/path.csv", r.flown_t, r.flown); !s) return s;
   std::ofstream events(dir + "/events.csv");
   events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason\n";
   for (const MissionEvent& e : r.events) {
@@ -70,7 +65,7 @@ Status writeCsvs(const std::string& dir, const MissionResult& r) {
            << e.viewpoints << "," << e.clusters << "," << e.tour << "," << e.observed << "," << e.action << ","
            << e.reason << "\n";
   }
-  if (!path || !events) return Status::Error("cannot write path.csv / events.csv in " + dir);
+  if (!events) return Status::Error("cannot write events.csv in " + dir);
   return Status::Ok();
 }
 

@@ -15,16 +15,17 @@
 // sampled at its frame rate, in nbv_mission's path.csv format, so that
 // `nbv_refuse --path DIR/oracle_flight.csv` fuses and evaluates the oracle's
 // flight as a mission's. --cover-fraction (0.99 by default) stops the greedy
-// cover at that share of the coverable targets: a shorter oracle flight. With --online-path / --online-min (an nbv_mission
-// trial's figures) the ratios online / oracle are printed and written too.
+// cover at that share of the coverable targets: a shorter oracle flight.
+// With --online-path / --online-min (an nbv_mission trial's figures) the
+// ratios online / oracle are printed and written too.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
+#include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/oracle_planner.h"
-#include "surface_nbv/tracking/trajectory.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
 
@@ -57,25 +58,18 @@ Status writePath(const std::string& file, const OracleResult& r) {
   return out ? Status::Ok() : Status::Error("cannot write " + file);
 }
 
-// The path timed as the oracle times it and sampled every 1 / frame_rate s,
-// in nbv_mission's path.csv format (t_s,x_m,y_m,z_m,yaw_rad).
-Status writeFlight(const std::string& file, const OracleResult& r, const OracleConfig& config, double frame_rate) {
-  std::vector<Waypoint> waypoints;
-  for (const Eigen::Vector4d& q : r.path) waypoints.push_back({q.head<3>(), q.w()});
-  const Trajectory timed = timeWaypoints(waypoints, 0.0, config.speed, config.yaw_rate);
-  std::ofstream out(file);
-  out << "t_s,x_m,y_m,z_m,yaw_rad\n";
-  out.precision(10);
-  if (timed.empty()) return out ? Status::Ok() : Status::Error("cannot write " + file);
-  // Frames every 1 / frame_rate s from 0, and one at the end (the last viewpoint).
-  const double end = timed.endTime();
-  for (size_t i = 0;; ++i) {
-    const double t = std::min(end, i / frame_rate);
-    const TrajectorySample q = timed.sample(t);
-    out << t << "," << q.p_W.x() << "," << q.p_W.y() << "," << q.p_W.z() << "," << q.yaw << "\n";
-    if (t >= end - 1e-9) break;
+// The oracle's timed path sampled every 1 / frame_rate s from 0, and once at
+// its end (the last viewpoint), as nbv_mission's path.csv.
+Status writeFlight(const std::string& file, const Trajectory& timed, double frame_rate) {
+  std::vector<double> t;
+  std::vector<Eigen::Vector4d> poses;
+  for (size_t i = 0; !timed.empty(); ++i) {
+    t.push_back(std::min(timed.endTime(), i / frame_rate));
+    const TrajectorySample q = timed.sample(t.back());
+    poses.emplace_back(q.p_W.x(), q.p_W.y(), q.p_W.z(), q.yaw);
+    if (t.back() >= timed.endTime() - 1e-9) break;
   }
-  return out ? Status::Ok() : Status::Error("cannot write " + file);
+  return writeFlightCsv(file, t, poses);
 }
 
 Status writePoints(const std::string& file, const std::vector<Eigen::Vector3d>& points) {
@@ -142,9 +136,7 @@ int main(int argc, char** argv) {
   if (!r.status) return fail(r.status.message());
   if (Status s = writePath(out_dir + "/oracle_path.csv", r); !s) return fail(s.message());
   if (Status s = writePoints(out_dir + "/oracle_uncoverable.csv", r.uncoverable); !s) return fail(s.message());
-  if (Status s = writeFlight(out_dir + "/oracle_flight.csv", r, config, mission.frame_rate); !s) {
-    return fail(s.message());
-  }
+  if (Status s = writeFlight(out_dir + "/oracle_flight.csv", r.timed, mission.frame_rate); !s) return fail(s.message());
 
   const double flight_min = r.flight_time / 60.0, wall_s = r.times.total / 1000.0;
   const double path_ratio = online_path > 0.0 ? online_path / r.path_length : NAN;

@@ -35,6 +35,7 @@
 #include "surface_nbv/map/mesh_extractor.h"
 #include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_integrator.h"
+#include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/sim/depth_points.h"
 #include "surface_nbv/sim/depth_renderer.h"
@@ -59,8 +60,6 @@ const char* kUsage =
     "  exists; --seed is the mission seed of the trial (camera noise seed = camera.noise_seed + S, default 1);\n"
     "  --out defaults to output/refuse_<scene name>. --observed also reports the coverage of the measured depth\n"
     "  points themselves (what the camera saw, whatever the fusion).\n";
-
-const char* kHeader = "t_s,x_m,y_m,z_m,yaw_rad";
 
 int fail(const std::string& message) {
   std::cerr << "nbv_refuse: " << message << "\n";
@@ -97,9 +96,10 @@ Status readPath(const std::string& file, std::vector<PathRow>* rows) {
   for (std::string line; std::getline(in, line);) lines.push_back(trim(line));
   if (in.bad()) return Status::Error("cannot read path file '" + file + "'");
   while (!lines.empty() && lines.back().empty()) lines.pop_back();
-  if (lines.empty()) return Status::Error(file + ": empty file, expected the header '" + kHeader + "' and poses");
-  if (lines[0] != kHeader) {
-    return Status::Error(file + ":1: expected the header '" + std::string(kHeader) + "', got '" + lines[0] + "'");
+  const std::string header = kFlightCsvHeader;
+  if (lines.empty()) return Status::Error(file + ": empty file, expected the header '" + header + "' and poses");
+  if (lines[0] != header) {
+    return Status::Error(file + ":1: expected the header '" + header + "', got '" + lines[0] + "'");
   }
   static const char* const kColumns[] = {"t_s", "x_m", "y_m", "z_m", "yaw_rad"};
   rows->clear();
@@ -110,7 +110,7 @@ Status readPath(const std::string& file, std::vector<PathRow>* rows) {
     for (std::string field; std::getline(ss, field, ',');) fields.push_back(trim(field));
     if (!lines[i].empty() && lines[i].back() == ',') fields.push_back("");
     if (fields.size() != 5) {
-      return Status::Error(where + "expected 5 comma-separated numbers (" + kHeader + "), got " +
+      return Status::Error(where + "expected 5 comma-separated numbers (" + kFlightCsvHeader + "), got " +
                            std::to_string(fields.size()) + " field(s)");
     }
     double v[5];

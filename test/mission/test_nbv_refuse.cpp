@@ -189,7 +189,8 @@ TEST_F(NbvRefuse, FusesTheOraclesFlight) {
   auto fly = [&](const std::string& name, const std::string& extra) {
     Oracle o{NAN, NAN, NAN, NAN, NAN};
     const fs::path out = dir_ / name;
-    const ToolRun r = run("--scene box --config " + config_ + " --threads 1 --out " + out.string() + extra, "nbv_oracle");
+    const ToolRun r =
+        run("--scene box --config " + config_ + " --threads 1 --out " + out.string() + extra, "nbv_oracle");
     EXPECT_EQ(r.code, 0) << r.out << r.err;
     const std::string json = readText(out / "oracle.json");
     o.path_m = jsonNumber(json, "path_length_m");

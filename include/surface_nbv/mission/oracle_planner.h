@@ -39,6 +39,7 @@
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/raycast_scene.h"
 #include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/tracking/trajectory.h"
 
 namespace surface_nbv {
 
@@ -91,7 +92,8 @@ struct OracleResult {
   std::vector<int> path_viewpoint;                 // per path pose: viewpoint reached there, else -1
   size_t failed_legs = 0;                          // legs without a path (their viewpoint is skipped)
   double path_length = 0.0;                        // m
-  double flight_time = 0.0;                        // s
+  Trajectory timed;                                // the path timed at speed and yaw_rate, from t = 0
+  double flight_time = 0.0;                        // s, timed's duration
   OracleTimes times;
 
   double coveredFraction() const { return coverable ? double(covered) / coverable : 0.0; }
