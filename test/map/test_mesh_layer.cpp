@@ -192,25 +192,44 @@ Transform alternatingView(int k) {
   return lookingAlongX(Eigen::Vector3d(dir > 0 ? 2.0 + 0.2 * k : 9.8 - 0.2 * k, 0.1 * k, 0.05 * k), dir);
 }
 
+// The set-up of those tests: the wall and cube, a map fused one frame after
+// the other on one thread (`serial`) and one fused the way under test
+// (`tested`, whose integrator keeps 3 threads of the caller's own).
+struct FusionOrder {
+  explicit FusionOrder(const TsdfConfig& config)
+      : scene(wallAndCube()), camera(smallCamera()), serial(config), tested(config) {
+    tested.integrator.setThreads(3);
+  }
+  // Renders view k into `depth`, fuses it into `serial` and returns its pose.
+  Transform frame(int k) {
+    const Transform T = alternatingView(k);
+    DepthRenderer(*scene, camera, 1).render(T, &depth);
+    EXPECT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok()) << k;
+    return T;
+  }
+
+  std::unique_ptr<RaycastScene> scene;
+  DepthCamera camera;
+  LayeredMap serial, tested;
+  DepthImage depth;
+};
+
 }  // namespace
 
 // Fusing the planning map and the layer side by side on two threads leaves
 // both exactly as fusing them one after the other; a bad frame fails both.
 TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
-  const std::unique_ptr<RaycastScene> scene = wallAndCube();
-  ASSERT_NE(scene, nullptr);
-  const DepthCamera camera = smallCamera();
-  const DepthRenderer renderer(*scene, camera, 1);
   TsdfConfig config = layeredConfig();
   config.threads = 2;
-  LayeredMap serial(config), side(config);
-  side.integrator.setThreads(3);  // the caller's own count, kept across the frames
-  DepthImage depth;
+  FusionOrder f(config);
+  ASSERT_NE(f.scene, nullptr);
+  const DepthCamera& camera = f.camera;
+  DepthImage& depth = f.depth;
+  const LayeredMap& serial = f.serial;
+  LayeredMap& side = f.tested;
   for (int k = 0; k < 6; ++k) {
-    const Transform T = alternatingView(k);
-    renderer.render(T, &depth);
+    const Transform T = f.frame(k);
     IntegrationStats stats;
-    ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
     ASSERT_TRUE(side.layer.integrateDepthWith(&side.integrator, camera, depth, T, 2, &stats).ok());
     EXPECT_GT(stats.voxels_updated, 0u);
   }
@@ -239,19 +258,16 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
 // overwrites its depth image at once; a bad frame is the planning map's
 // error at once.
 TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
-  const std::unique_ptr<RaycastScene> scene = wallAndCube();
-  ASSERT_NE(scene, nullptr);
-  const DepthCamera camera = smallCamera();
-  const DepthRenderer renderer(*scene, camera, 1);
   TsdfConfig config = layeredConfig();
   config.mesh_voxel_size = 0.05;
-  LayeredMap serial(config), behind(config);
-  behind.integrator.setThreads(3);
-  DepthImage depth;
+  FusionOrder f(config);
+  ASSERT_NE(f.scene, nullptr);
+  const DepthCamera& camera = f.camera;
+  DepthImage& depth = f.depth;
+  const LayeredMap& serial = f.serial;
+  LayeredMap& behind = f.tested;
   for (int k = 0; k < 6; ++k) {
-    const Transform T = alternatingView(k);
-    renderer.render(T, &depth);
-    ASSERT_TRUE(serial.layer.integrateDepthWith(&serial.integrator, camera, depth, T, 1).ok());
+    const Transform T = f.frame(k);
     IntegrationStats stats;
     ASSERT_TRUE(behind.layer.integrateDepthBehind(&behind.integrator, camera, depth, T, 2, &stats).ok());
     EXPECT_GT(stats.voxels_updated, 0u);

@@ -53,6 +53,26 @@ TsdfConfig wallConfig() {
   return c;
 }
 
+// One frame of the wall from (camera_x, 0, 0), for a map of wallConfig() and
+// one of `variant`: the tests of an option against the plain map.
+struct WallPair {
+  WallPair(const TsdfConfig& variant, double camera_x)
+      : plain_map(wallConfig()),
+        variant_map(variant),
+        plain(&plain_map),
+        other(&variant_map),
+        camera(world.camera_config),
+        T(lookingAlongX(Eigen::Vector3d(camera_x, 0.0, 0.0))),
+        depth(world.render(T)) {}
+
+  WallWorld world;
+  TsdfMap plain_map, variant_map;
+  TsdfIntegrator plain, other;
+  DepthCamera camera;
+  Transform T;
+  DepthImage depth;
+};
+
 }  // namespace
 
 TEST(TsdfIntegrator, WallPhiIsExactAndWeightsSumInverseSquares) {
@@ -97,16 +117,13 @@ TEST(TsdfIntegrator, WallPhiIsExactAndWeightsSumInverseSquares) {
 // nothing at -t. The distances are the same as without, and so is
 // everything in front.
 TEST(TsdfIntegrator, WeightDropsOffBehindTheSurface) {
-  WallWorld world;
   TsdfConfig config = wallConfig();
   config.weight_dropoff = true;
-  TsdfMap plain_map(wallConfig()), dropped_map(config);
-  TsdfIntegrator plain(&plain_map), dropped(&dropped_map);
-  const DepthCamera camera(world.camera_config);
-  const Transform T = lookingAlongX(Eigen::Vector3d(1.0, 0.0, 0.0));
-  const DepthImage depth = world.render(T);
-  ASSERT_TRUE(plain.integrateDepth(camera, depth, T).ok());
-  ASSERT_TRUE(dropped.integrateDepth(camera, depth, T).ok());
+  WallPair p(config, 1.0);
+  const WallWorld& world = p.world;
+  const TsdfMap &plain_map = p.plain_map, &dropped_map = p.variant_map;
+  ASSERT_TRUE(p.plain.integrateDepth(p.camera, p.depth, p.T).ok());
+  ASSERT_TRUE(p.other.integrateDepth(p.camera, p.depth, p.T).ok());
   const double trunc = config.truncationDistance(), voxel = config.voxel_size;
   int behind = 0, full = 0;
   for (double xc = 2.1; xc < 7.9; xc += 0.2) {
@@ -136,20 +153,18 @@ TEST(TsdfIntegrator, WeightDropsOffBehindTheSurface) {
 // wall by more than the truncation; blocks near the wall hold the same voxels
 // as without; a block that exists is still updated however far in front.
 TEST(TsdfIntegrator, BandAllocationKeepsBlocksNearSurfaces) {
-  WallWorld world;
   TsdfConfig config = wallConfig();
   config.band_allocation = true;
-  TsdfMap full_map(wallConfig()), band_map(config);
-  TsdfIntegrator full(&full_map), band(&band_map);
-  const DepthCamera camera(world.camera_config);
-  const Transform T = lookingAlongX(Eigen::Vector3d(0.0, 0.0, 0.0));
-  const DepthImage depth = world.render(T);
-  ASSERT_TRUE(full.integrateDepth(camera, depth, T).ok());
+  WallPair p(config, 0.0);
+  const WallWorld& world = p.world;
+  const TsdfMap& full_map = p.plain_map;
+  TsdfMap& band_map = p.variant_map;
+  ASSERT_TRUE(p.plain.integrateDepth(p.camera, p.depth, p.T).ok());
   // A block 4 m in front of the wall, allocated before the frame.
   Eigen::Vector3i near_camera;
   ASSERT_TRUE(band_map.voxelIndex(Eigen::Vector3d(1.0, 0.0, 0.0), &near_camera));
   ASSERT_NE(band_map.allocateVoxel(near_camera), nullptr);
-  ASSERT_TRUE(band.integrateDepth(camera, depth, T).ok());
+  ASSERT_TRUE(p.other.integrateDepth(p.camera, p.depth, p.T).ok());
   const double trunc = config.truncationDistance(), block_len = config.voxel_size * kBlockSize;
   size_t far_blocks = 0;
   for (const auto& b : full_map.blocks()) {
