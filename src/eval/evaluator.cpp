@@ -21,23 +21,28 @@ double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 
 Status Evaluator::evaluate(const TriangleMesh& ground_truth, const TriangleMesh& reconstruction,
                            EvalResult* result) const {
+  const auto t_start = Clock::now();
+  EvalResult r;
+  if (Status s = prepareGroundTruth(ground_truth, &r); !s) return s;
+  if (Status s = scoreReconstruction(reconstruction, &r); !s) return s;
+  r.timings.total_s = secondsSince(t_start);
+  *result = std::move(r);
+  return Status::Ok();
+}
+
+Status Evaluator::prepareGroundTruth(const TriangleMesh& ground_truth, EvalResult* result) const {
   if (Status s = config_.validate(); !s) return s;
   if (!(ground_truth.area() > 0.0)) return Status::Error("ground truth has no surface to evaluate against");
   const auto t_start = Clock::now();
   EvalResult r;
   r.config = config_;
   r.ground_truth_triangles = ground_truth.numTriangles();
-  r.reconstruction_triangles = reconstruction.numTriangles();
   r.ground_truth_area = ground_truth.area();
-  r.reconstruction_area = reconstruction.area();
 
   auto t = Clock::now();
   const SurfaceSampler sampler(config_.spacing(), config_.seed, config_.threads);
   if (Status s = sampler.sample(ground_truth, config_.max_points, &r.ground_truth); !s) {
     return Status::Error("ground truth: " + s.message());
-  }
-  if (Status s = sampler.sample(reconstruction, config_.max_points, &r.reconstruction); !s) {
-    return Status::Error("reconstruction: " + s.message());
   }
   r.timings.sample_s = secondsSince(t);
 
@@ -61,6 +66,24 @@ Status Evaluator::evaluate(const TriangleMesh& ground_truth, const TriangleMesh&
   } else {
     r.visible.assign(r.ground_truth.size(), 1);
   }
+  r.timings.total_s = secondsSince(t_start);
+  *result = std::move(r);
+  return Status::Ok();
+}
+
+Status Evaluator::scoreReconstruction(const TriangleMesh& reconstruction, EvalResult* result) const {
+  EvalResult& r = *result;
+  if (r.ground_truth.size() == 0 || r.visible.size() != r.ground_truth.size()) {
+    return Status::Error("scoreReconstruction: the ground-truth side is not prepared");
+  }
+  r.reconstruction_triangles = reconstruction.numTriangles();
+  r.reconstruction_area = reconstruction.area();
+  auto t = Clock::now();
+  const SurfaceSampler sampler(config_.spacing(), config_.seed, config_.threads);
+  if (Status s = sampler.sample(reconstruction, config_.max_points, &r.reconstruction); !s) {
+    return Status::Error("reconstruction: " + s.message());
+  }
+  r.timings.sample_s += secondsSince(t);
 
   t = Clock::now();
   const PointIndex reconstruction_index(r.reconstruction.points);
@@ -77,8 +100,6 @@ Status Evaluator::evaluate(const TriangleMesh& ground_truth, const TriangleMesh&
   r.error_stats = ErrorStats::of(r.error);
   r.matched = r.error_stats.count;
   r.timings.m3c2_s = secondsSince(t);
-  r.timings.total_s = secondsSince(t_start);
-  *result = std::move(r);
   return Status::Ok();
 }
 

@@ -140,6 +140,8 @@ MissionResult MissionRunner::run() {
   double next_frame = 0.0;
   double next_frontier = c.start_spin > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
   double next_progress = 0.0;
+  double next_checkpoint = checkpoint_period_ > 0.0 ? checkpoint_period_ : std::numeric_limits<double>::infinity();
+  double last_checkpoint = 0.0;
   Frontier frontier;
   DepthImage depth;
   Eigen::Vector3d last_p = tracker.state().p_W;
@@ -174,6 +176,15 @@ MissionResult MissionRunner::run() {
     ++result.frames;
     result.flown.push_back(uav);
     result.flown_t.push_back(tracker.time());
+    if (checkpoint_ && tracker.time() + 1e-9 >= next_checkpoint) {
+      if (Status s = mesh_layer_->finish(); !s) {
+        result.status = Status::Error("mesh layer integration failed: " + s.message());
+        break;
+      }
+      checkpoint_(tracker.time(), result.path_length, meshMap());
+      last_checkpoint = tracker.time();
+      next_checkpoint += checkpoint_period_;
+    }
 
     const bool leg_finished =
         legEnded(tracker, c.leg_lookahead, c.explorer.reach_tolerance, c.leg_yaw_tolerance);
@@ -242,6 +253,9 @@ MissionResult MissionRunner::run() {
   }
   if (Status s = mesh_layer_->finish(); !s && result.status) {
     result.status = Status::Error("mesh layer integration failed: " + s.message());
+  }
+  if (checkpoint_ && result.status && tracker.time() > last_checkpoint + 1e-9) {
+    checkpoint_(tracker.time(), result.path_length, meshMap());
   }
   if (result.end_reason.empty() && result.status) {
     result.end_reason = pathLeft() ? "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached"

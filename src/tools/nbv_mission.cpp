@@ -4,11 +4,17 @@
 // scene's ground truth and writes the paper's Table 2 columns.
 //
 //   nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S]
-//               [--out DIR] [--threads N] [--max-flight-time S] [--max-path-length M] [--no-plots]
+//               [--out DIR] [--threads N] [--max-flight-time S] [--max-path-length M]
+//               [--coverage-every S] [--no-plots]
 //
 // Per trial (DIR/trial_K/): reconstruction.ply, map.tsdf, path.csv (flown
 // poses), events.csv (every frontier update), eval/ (nbv_evaluate's report and
 // clouds) and PNG plots; in DIR: report.json and report.md over all trials.
+// --coverage-every S also meshes and evaluates the reconstruction every S
+// seconds of flight and at the end (trial_K/coverage.csv, the reports and
+// progress.png): the coverage over time, with the same evaluation as the
+// trial's own (the flights are the same with or without).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,15 +42,22 @@ namespace {
 const char* kUsage =
     "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
     "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--scale S] [--offset X,Y,Z]\n"
-    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--no-plots]\n"
-    "  --config defaults to config/<scene name>.yaml of the package when it exists.\n";
+    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--coverage-every S] [--no-plots]\n"
+    "  --config defaults to config/<scene name>.yaml of the package when it exists.\n"
+    "  --coverage-every S evaluates the reconstruction every S seconds of flight (coverage over time).\n";
 
 int fail(const std::string& message) {
   std::cerr << "nbv_mission: " << message << "\n";
   return 2;
 }
 
+// The evaluated coverage at one checkpoint of a trial (--coverage-every).
+struct CoveragePoint {
+  double t = 0, path_length = 0, coverage = 0, rmse = 0;
+};
+
 struct TrialRow {
+  std::vector<CoveragePoint> coverage_over_time;
   int trial = 0;
   unsigned seed = 0;
   bool completed = false;
@@ -67,6 +80,40 @@ Status writeCsvs(const std::string& dir, const MissionResult& r) {
   }
   if (!events) return Status::Error("cannot write events.csv in " + dir);
   return Status::Ok();
+}
+
+Status writeCoverageCsv(const std::string& dir, const std::vector<CoveragePoint>& points) {
+  std::ofstream out(dir + "/coverage.csv");
+  out << "t_s,path_m,coverage,rmse_m\n";
+  for (const CoveragePoint& p : points) out << p.t << "," << p.path_length << "," << p.coverage << "," << p.rmse << "\n";
+  if (!out) return Status::Error("cannot write coverage.csv in " + dir);
+  return Status::Ok();
+}
+
+// --coverage-every: coverage [%] by flight time, a row per checkpoint and a
+// column per trial, with the path flown; the last row is each trial's end.
+void writeCoverageTable(const std::vector<TrialRow>& rows, std::ostream* md) {
+  size_t n = 0;
+  for (const TrialRow& r : rows) n = std::max(n, r.coverage_over_time.size());
+  *md << "\nCoverage over flight time (--coverage-every), per trial: coverage [%] (path [m]).\n\n| checkpoint |";
+  for (const TrialRow& r : rows) *md << " trial " << r.trial << " |";
+  *md << "\n|---|";
+  for (size_t k = 0; k < rows.size(); ++k) *md << "---|";
+  *md << "\n";
+  char cell[64];
+  for (size_t i = 0; i < n; ++i) {
+    *md << "| " << i + 1 << " |";
+    for (const TrialRow& r : rows) {
+      if (i >= r.coverage_over_time.size()) {
+        *md << " |";
+        continue;
+      }
+      const CoveragePoint& c = r.coverage_over_time[i];
+      std::snprintf(cell, sizeof(cell), " %.1f min: %.2f (%.0f) |", c.t / 60.0, 100.0 * c.coverage, c.path_length);
+      *md << cell;
+    }
+    *md << "\n";
+  }
 }
 
 // "65.8 % cruise, 17.2 % moving slower, ..., 704 rad of yaw": shares of the flight time.
@@ -92,7 +139,8 @@ void meanStd(const std::vector<double>& v, double* mean, double* sd) {
 
 int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
-  options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length"});
+  options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length",
+                                "coverage-every"});
   CliArgs args(options, {"help", "no-plots"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -101,13 +149,16 @@ int main(int argc, char** argv) {
   std::string config_file;
   if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());
   int trials = 1, seed = 1;
+  double coverage_every = 0.0;
   const Status parsed[] = {args.getInt("trials", &trials), args.getInt("seed", &seed),
+                           args.getDouble("coverage-every", &coverage_every),
                            args.getInt("threads", &config.threads),
                            args.getDouble("max-flight-time", &config.max_flight_time),
                            args.getDouble("max-path-length", &config.max_path_length)};
   for (const Status& s : parsed)
     if (!s) return fail(s.message());
   if (trials < 1 || trials > 100 || seed < 0) return fail("--trials expects 1..100 and --seed >= 0");
+  if (args.has("coverage-every") && !(coverage_every >= 1.0)) return fail("--coverage-every expects >= 1 s of flight");
   if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
   const std::string scene_name = std::filesystem::path(config.scene.scene).stem().string();
   const std::string out_dir = args.get("out", "output/mission_" + scene_name);
@@ -129,6 +180,11 @@ int main(int argc, char** argv) {
   for (const Eigen::Vector3f& p : probe_cloud.points) probe.push_back(p.cast<double>());
 
   const EvalConfig eval_config = missionEvalConfig(config);
+  // --coverage-every: the ground-truth side of the evaluation, once for all checkpoints.
+  EvalResult checkpoint_eval;
+  if (coverage_every > 0.0) {
+    if (Status s = Evaluator(eval_config).prepareGroundTruth(mesh, &checkpoint_eval); !s) return fail(s.message());
+  }
   std::vector<TrialRow> rows;
   for (int k = 0; k < trials; ++k) {
     MissionConfig trial_config = config;
@@ -144,7 +200,26 @@ int main(int argc, char** argv) {
                   e.t, e.path_length, e.ises, e.inside, e.clusters, e.tour, 100.0 * e.observed);
       std::fflush(stdout);
     });
+    std::vector<CoveragePoint> coverage_over_time;
+    Status checkpoint_status;
+    if (coverage_every > 0.0) {
+      runner.setCheckpoints(coverage_every, [&](double t, double path_length, const TsdfMap& mesh_map) {
+        MeshExtractor checkpoint_mesher;
+        checkpoint_mesher.update(mesh_map);
+        Status s = Evaluator(eval_config).scoreReconstruction(checkpoint_mesher.mesh(), &checkpoint_eval);
+        if (!s) {
+          if (checkpoint_status) checkpoint_status = s;
+          return;
+        }
+        coverage_over_time.push_back(
+            {t, path_length, checkpoint_eval.coverage.coverage(), checkpoint_eval.error_stats.rmse});
+        std::printf("  coverage at %5.1f min, %6.1f m of path: %.2f %%\n", t / 60.0, path_length,
+                    100.0 * coverage_over_time.back().coverage);
+        std::fflush(stdout);
+      });
+    }
     const MissionResult r = runner.run();
+    if (!checkpoint_status) return fail("trial " + std::to_string(k) + ": coverage checkpoint: " + checkpoint_status.message());
     if (!r.status) return fail("trial " + std::to_string(k) + ": " + r.status.message());
     MeshExtractor mesher;
     mesher.update(runner.meshMap());
@@ -154,6 +229,9 @@ int main(int argc, char** argv) {
     }
     if (Status s = saveMap(runner.map(), dir + "/map.tsdf"); !s) return fail(s.message());
     if (Status s = writeCsvs(dir, r); !s) return fail(s.message());
+    if (coverage_every > 0.0) {
+      if (Status s = writeCoverageCsv(dir, coverage_over_time); !s) return fail(s.message());
+    }
     EvalResult eval;
     if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
     if (Status s = ReportWriter(eval, {dir + "/reconstruction.ply", config.scene.scene}).write(dir + "/eval"); !s) {
@@ -161,6 +239,7 @@ int main(int argc, char** argv) {
     }
     TrialRow row;
     row.trial = k;
+    row.coverage_over_time = coverage_over_time;
     row.seed = trial_config.seed;
     row.completed = r.completed;
     row.end_reason = r.end_reason;
@@ -247,6 +326,14 @@ int main(int argc, char** argv) {
     json.beginObject("flight_profile").value("cruise_s", p.cruise_s).value("moving_s", p.moving_s);
     json.value("turning_in_place_s", p.turning_in_place_s).value("stopped_s", p.stopped_s);
     json.value("vertical_s", p.vertical_s).value("total_yaw_rad", p.total_yaw_rad).endObject();
+    if (coverage_every > 0.0) {
+      json.beginArray("coverage_over_time");
+      for (const CoveragePoint& c : r.coverage_over_time) {
+        json.beginObject().value("t_s", c.t).value("path_m", c.path_length).value("coverage", c.coverage);
+        json.value("rmse_m", c.rmse).endObject();
+      }
+      json.endArray();
+    }
     json.endObject();
   }
   json.endArray().endObject();
@@ -287,6 +374,7 @@ int main(int argc, char** argv) {
         "from 0.2 m/s, turning in place below that at over 0.3 rad/s, else stopped; vertical is the part of cruise "
         "and moving that climbs or descends more than it goes sideways.\n\n";
   for (const TrialRow& r : rows) md << "- trial " << r.trial << ": " << profileLine(r.profile) << "\n";
+  if (coverage_every > 0.0) writeCoverageTable(rows, &md);
   std::printf("summary over %d trial(s):\n", trials);
   for (Stat& s : stats) {
     double m, sd;

@@ -173,6 +173,18 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   MissionConfig layered = c;
   layered.tsdf.mesh_truncation = 2.0 * c.tsdf.voxel_size;
   MissionRunner again(layered, *scene);
+  // With the coverage over time (nbv_mission --coverage-every): every 20 s of
+  // flight and at the end, the layer holds every frame up to then.
+  struct Checkpoint {
+    double t, path_length;
+    TriangleMesh mesh;
+  };
+  std::vector<Checkpoint> checkpoints;
+  again.setCheckpoints(20.0, [&](double t, double path_length, const TsdfMap& mesh_map) {
+    MeshExtractor m;
+    m.update(mesh_map);
+    checkpoints.push_back({t, path_length, m.mesh()});
+  });
   const MissionResult r2 = again.run();
   ASSERT_EQ(r2.flown.size(), r.flown.size());
   for (size_t i = 0; i < r.flown.size(); ++i) ASSERT_EQ(r2.flown[i], r.flown[i]) << "frame " << i;
@@ -187,6 +199,33 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
               100.0 * e2.error_stats.rmse);
   EXPECT_GT(e2.coverage.coverage(), 0.95);
   EXPECT_LT(e2.error_stats.rmse, c.tsdf.voxel_size);
+
+  // The checkpoints: one per 20 s of flight, at the first frame from then
+  // on, and one at the end whose mesh is the trial's; scored against one
+  // prepared ground truth they give what evaluate() gives.
+  ASSERT_GE(checkpoints.size(), 3u);
+  const double frame_dt = 1.0 / c.frame_rate;
+  for (size_t k = 0; k + 1 < checkpoints.size(); ++k) {
+    EXPECT_GE(checkpoints[k].t, 20.0 * (k + 1) - 1e-6) << k;
+    EXPECT_LT(checkpoints[k].t, 20.0 * (k + 1) + frame_dt + 1e-6) << k;
+    EXPECT_LE(checkpoints[k].path_length, checkpoints[k + 1].path_length) << k;
+  }
+  EXPECT_DOUBLE_EQ(checkpoints.back().t, r2.flight_time);
+  EXPECT_DOUBLE_EQ(checkpoints.back().path_length, r2.path_length);
+  EXPECT_EQ(checkpoints.back().mesh.numTriangles(), layer_mesher.mesh().numTriangles());
+  EvalResult prepared;
+  ASSERT_TRUE(Evaluator(eval).prepareGroundTruth(mesh, &prepared).ok());
+  double first = -1.0;
+  for (const Checkpoint& cp : checkpoints) {
+    ASSERT_TRUE(Evaluator(eval).scoreReconstruction(cp.mesh, &prepared).ok());
+    if (first < 0.0) first = prepared.coverage.coverage();
+  }
+  EXPECT_EQ(prepared.coverage.num_covered, e2.coverage.num_covered);
+  EXPECT_EQ(prepared.coverage.visible, e2.coverage.visible);
+  EXPECT_DOUBLE_EQ(prepared.error_stats.rmse, e2.error_stats.rmse);
+  EXPECT_LT(first, 0.9 * e2.coverage.coverage());  // 20 s in, far from done
+  EvalResult unprepared;
+  EXPECT_FALSE(Evaluator(eval).scoreReconstruction(checkpoints.back().mesh, &unprepared).ok());
 }
 
 }  // namespace

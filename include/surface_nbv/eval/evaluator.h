@@ -50,6 +50,14 @@ class Evaluator {
   // reconstruction is not (it covers nothing).
   Status evaluate(const TriangleMesh& ground_truth, const TriangleMesh& reconstruction, EvalResult* result) const;
 
+  // The two halves of evaluate(), for scoring many reconstructions against
+  // one ground truth (a mission's coverage over time): the ground-truth side
+  // (samples, pruning, sensor bounds) into a fresh result, then the
+  // reconstruction side (its samples, coverage, errors), replaced in a
+  // result whose ground-truth side is prepared. Same figures as evaluate().
+  Status prepareGroundTruth(const TriangleMesh& ground_truth, EvalResult* result) const;
+  Status scoreReconstruction(const TriangleMesh& reconstruction, EvalResult* result) const;
+
  private:
   EvalConfig config_;
 };

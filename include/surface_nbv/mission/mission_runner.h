@@ -71,6 +71,15 @@ class MissionRunner {
   // Called with each event that carries a progress measurement.
   void setProgress(std::function<void(const MissionEvent&)> progress) { progress_ = std::move(progress); }
 
+  // Every `period` seconds of flight (and at the end), with the flight time,
+  // the path flown so far and the map the reconstruction is meshed from,
+  // every frame up to then fused into it: for the coverage over time. The
+  // mission is the same with or without; its wall time includes the calls.
+  using Checkpoint = std::function<void(double t, double path_length, const TsdfMap& mesh_map)>;
+  void setCheckpoints(double period, Checkpoint checkpoint) {
+    checkpoint_period_ = period, checkpoint_ = std::move(checkpoint);
+  }
+
   MissionResult run();
   // The map after run().
   const TsdfMap& map() const;
@@ -87,6 +96,8 @@ class MissionRunner {
   std::unique_ptr<MeshLayer> mesh_layer_;
   std::vector<Eigen::Vector3d> probe_;
   std::function<void(const MissionEvent&)> progress_;
+  double checkpoint_period_ = 0.0;
+  Checkpoint checkpoint_;
 };
 
 }  // namespace surface_nbv
