@@ -5,8 +5,9 @@ the error histogram of the evaluation.
 
     scripts/plot_mission.py TRIAL_DIR
 
-Reads TRIAL_DIR/path.csv, events.csv, reconstruction.ply (vertices) and
-eval/error.ply; writes path_top.png, path_side.png, progress.png and
+Reads TRIAL_DIR/path.csv, events.csv, reconstruction.ply (vertices),
+eval/error.ply and, when nbv_mission --coverage-every wrote it,
+coverage.csv; writes path_top.png, path_side.png, progress.png and
 error_histogram.png into TRIAL_DIR. Needs python3-matplotlib and python3-numpy.
 """
 import csv
@@ -99,7 +100,12 @@ def main():
     ax2 = ax.twinx()
     mask = observed >= 0
     ax2.plot(t[mask], 100.0 * observed[mask], "o-", color="tab:blue", label="observed surface [%]")
-    ax2.set_ylabel("observed surface [%]")
+    coverage_csv = os.path.join(d, "coverage.csv")
+    if os.path.exists(coverage_csv):  # nbv_mission --coverage-every
+        rows = read_csv(coverage_csv)
+        ax2.plot([float(r["t_s"]) / 60.0 for r in rows], [100.0 * float(r["coverage"]) for r in rows], "s-",
+                 color="tab:green", label="coverage, evaluated [%]")
+    ax2.set_ylabel("observed surface, coverage [%]")
     ax2.set_ylim(0, 100)
     lines = ax.get_legend_handles_labels()
     lines2 = ax2.get_legend_handles_labels()

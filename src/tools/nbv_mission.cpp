@@ -84,6 +84,7 @@ Status writeCsvs(const std::string& dir, const MissionResult& r) {
 
 Status writeCoverageCsv(const std::string& dir, const std::vector<CoveragePoint>& points) {
   std::ofstream out(dir + "/coverage.csv");
+  out.precision(10);
   out << "t_s,path_m,coverage,rmse_m\n";
   for (const CoveragePoint& p : points) out << p.t << "," << p.path_length << "," << p.coverage << "," << p.rmse << "\n";
   if (!out) return Status::Error("cannot write coverage.csv in " + dir);

@@ -3,11 +3,14 @@
 // truncation changing the mesh, the coverage of what the camera saw
 // (--observed), and every kind of bad input refused with
 // exit code 2 and a message naming it. Also nbv_oracle's flight file, which
-// nbv_refuse fuses as a mission's, and its --cover-fraction.
+// nbv_refuse fuses as a mission's, and its --cover-fraction, and
+// nbv_mission's coverage over time (--coverage-every), which nbv_refuse
+// reproduces from the flight's first part.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -243,6 +246,57 @@ TEST_F(NbvRefuse, FusesTheOraclesFlight) {
   const ToolRun bad = run("--scene box --config " + config_ + " --cover-fraction 1.5", "nbv_oracle");
   EXPECT_EQ(bad.code, 2) << bad.out << bad.err;
   EXPECT_NE(bad.err.find("cover_fraction expected in (0, 1]"), std::string::npos) << bad.err;
+}
+
+// nbv_mission --coverage-every 20 on the box: a row every 20 s of flight and
+// one at the end, in coverage.csv and the reports; the last is the trial's
+// coverage, and nbv_refuse on the flight up to a checkpoint gives its figure.
+TEST_F(NbvRefuse, MissionCoverageOverTime) {
+  ASSERT_TRUE(fs::exists(exe_)) << exe_;
+  const fs::path out = dir_ / "mission";
+  const ToolRun r = run("--scene box --config " + config_ + " --threads 1 --no-plots --coverage-every 20 --out " +
+                            out.string(),
+                        "nbv_mission");
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  std::ifstream csv(out / "trial_0" / "coverage.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "t_s,path_m,coverage,rmse_m");
+  std::vector<std::array<double, 4>> rows;
+  while (std::getline(csv, line)) {
+    std::array<double, 4> v{};
+    EXPECT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3]), 4) << line;
+    rows.push_back(v);
+  }
+  ASSERT_GE(rows.size(), 3u);
+  for (size_t k = 0; k + 1 < rows.size(); ++k) {
+    EXPECT_GE(rows[k][0], 20.0 * (k + 1) - 1e-6) << k;
+    EXPECT_LE(rows[k][0], 20.0 * (k + 1) + 0.2 + 1e-6) << k;
+  }
+  const std::string json = readText(out / "report.json");
+  ASSERT_NE(json.find("\"per_trial\""), std::string::npos) << json;
+  const std::string trial = json.substr(json.find("\"per_trial\""));  // past the summary's keys
+  EXPECT_NEAR(rows.back()[0], 60.0 * jsonNumber(trial, "completion_min"), 1e-6);
+  EXPECT_NEAR(rows.back()[1], jsonNumber(trial, "path_length_m"), 1e-6);
+  EXPECT_NEAR(rows.back()[2], jsonNumber(trial, "coverage"), 1e-9);
+  EXPECT_LT(rows.front()[2], rows.back()[2]);
+  EXPECT_NE(json.find("\"coverage_over_time\": ["), std::string::npos);
+  EXPECT_NE(readText(out / "report.md").find("Coverage over flight time"), std::string::npos);
+  // The flight up to the second checkpoint, fused again: the same coverage.
+  std::ifstream flight(out / "trial_0" / "path.csv");
+  std::ostringstream prefix;
+  while (std::getline(flight, line)) {
+    if (line[0] != 't' && std::strtod(line.c_str(), nullptr) > rows[1][0] + 1e-9) break;
+    prefix << line << "\n";
+  }
+  const std::string prefix_csv = write("prefix.csv", prefix.str());
+  const ToolRun f = run("--scene box --config " + config_ + " --path " + prefix_csv + " --out " +
+                        (dir_ / "prefix").string());
+  EXPECT_EQ(f.code, 0) << f.out << f.err;
+  EXPECT_NEAR(jsonNumber(readText(dir_ / "prefix" / "refuse.json"), "coverage"), rows[1][2], 1e-9);
+  const ToolRun bad = run("--scene box --config " + config_ + " --coverage-every 0", "nbv_mission");
+  EXPECT_EQ(bad.code, 2) << bad.out << bad.err;
+  EXPECT_NE(bad.err.find("--coverage-every expects >= 1 s of flight"), std::string::npos) << bad.err;
 }
 
 TEST_F(NbvRefuse, RefusesBadInputsNamingThem) {
