@@ -23,9 +23,6 @@ Status SurfaceConfig::validate() const {
   if (!finite(approach_range_fraction) || approach_range_fraction < 0.0 || approach_range_fraction > 1.0) {
     return Status::Error("approach_range_fraction expected in [0, 1]");
   }
-  if (!finite(lead_distance) || lead_distance < 0.0 || lead_distance > camera.max_range) {
-    return Status::Error("lead_distance expected in [0, camera/max_range]");
-  }
   if (!finite(fov_margin_deg) || fov_margin_deg < 0.0 || fov_margin_deg >= 0.5 * camera.vfov_deg) {
     return Status::Error("fov_margin_deg expected in [0, camera/vfov_deg / 2)");
   }

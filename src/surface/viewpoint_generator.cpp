@@ -131,42 +131,19 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
   if (n_v.squaredNorm() < 0.5) return search;
   const VoxelStateGrid& grid = rays.grid();
   const Eigen::Vector3d v = grid.voxelCenter(voxel);
-  Eigen::Vector3d pose_shift = Eigen::Vector3d::Zero();  // of the pose tryDirection accepted
   auto setPose = [&](double d, const Eigen::Vector3d& dir) {
-    pose->position = v + d * dir + pose_shift;
+    pose->position = v + d * dir;
     pose->view_direction = -dir;
     pose->yaw = std::atan2(-dir.y(), -dir.x());
     search.found = true;
   };
-  // lead_distance: the way across the view towards the ISE's unknown 6-neighbours.
-  Eigen::Vector3d towards_unknown = Eigen::Vector3d::Zero();
-  if (config_.lead_distance > 0.0) {
-    for (int i = 0; i < 26; ++i) {
-      if (neighbours_[i].cwiseAbs().sum() == 1 && grid.at(voxel + neighbours_[i]) == VoxelStateGrid::kUnknown) {
-        towards_unknown += offsets_[i];
-      }
-    }
-  }
-  auto leadShift = [&](const Eigen::Vector3d& dir) -> Eigen::Vector3d {
-    const Eigen::Vector3d across = towards_unknown - towards_unknown.dot(dir) * dir;
-    const double norm = across.norm();
-    return norm > 1e-6 ? Eigen::Vector3d(config_.lead_distance / norm * across) : Eigen::Vector3d::Zero();
-  };
   auto tryDirection = [&](const Eigen::Vector3d& dir) {
     double accepted = 0.0;
-    const Eigen::Vector3d shift = leadShift(dir);
-    const bool lead = shift.squaredNorm() > 0.0;
     const bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
       ++search.tested;
       const Eigen::Vector3d p = v + d * dir;
-      if (lead && acceptable(rays, collision, bounds, voxel, p + shift)) {
-        accepted = d;
-        pose_shift = shift;
-        return true;
-      }
       if (acceptable(rays, collision, bounds, voxel, p)) {
         accepted = d;
-        pose_shift.setZero();
         return true;
       }
       Eigen::Vector3i at;

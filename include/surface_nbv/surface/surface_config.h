@@ -28,12 +28,6 @@ struct SurfaceConfig {
   // observes the unknown space in between, so the ISE is not left in C_rem
   // before anyone looked. 0 turns approach poses off.
   double approach_range_fraction = 0.0;
-  // Leading poses: the pose of eq. 2 is shifted this far [m] across its view
-  // towards the ISE's unknown 6-neighbours (the surface not yet seen), yaw
-  // unchanged, so the ISE sits off the middle of the view and the rest of it
-  // looks at unknown surface; where the shifted pose is not acceptable the
-  // pose of eq. 2 is tried. 0: the paper's poses.
-  double lead_distance = 0.0;
   // Evaluate Viewpoint::unknown_fraction (54 rays per viewpoint).
   bool unknown_fraction = true;
   // The ISE of a viewpoint must lie this far inside the vertical FOV edges
