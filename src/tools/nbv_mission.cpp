@@ -86,7 +86,9 @@ Status writeCoverageCsv(const std::string& dir, const std::vector<CoveragePoint>
   std::ofstream out(dir + "/coverage.csv");
   out.precision(10);
   out << "t_s,path_m,coverage,rmse_m\n";
-  for (const CoveragePoint& p : points) out << p.t << "," << p.path_length << "," << p.coverage << "," << p.rmse << "\n";
+  for (const CoveragePoint& p : points) {
+    out << p.t << "," << p.path_length << "," << p.coverage << "," << p.rmse << "\n";
+  }
   if (!out) return Status::Error("cannot write coverage.csv in " + dir);
   return Status::Ok();
 }
@@ -220,7 +222,9 @@ int main(int argc, char** argv) {
       });
     }
     const MissionResult r = runner.run();
-    if (!checkpoint_status) return fail("trial " + std::to_string(k) + ": coverage checkpoint: " + checkpoint_status.message());
+    if (!checkpoint_status) {
+      return fail("trial " + std::to_string(k) + ": coverage checkpoint: " + checkpoint_status.message());
+    }
     if (!r.status) return fail("trial " + std::to_string(k) + ": " + r.status.message());
     MeshExtractor mesher;
     mesher.update(runner.meshMap());

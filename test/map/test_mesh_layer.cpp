@@ -223,34 +223,31 @@ TEST(MeshLayer, SideBySideFusionEqualsOneAfterTheOther) {
   config.threads = 2;
   FusionOrder f(config);
   ASSERT_NE(f.scene, nullptr);
-  const DepthCamera& camera = f.camera;
-  DepthImage& depth = f.depth;
-  const LayeredMap& serial = f.serial;
-  LayeredMap& side = f.tested;
   for (int k = 0; k < 6; ++k) {
     const Transform T = f.frame(k);
     IntegrationStats stats;
-    ASSERT_TRUE(side.layer.integrateDepthWith(&side.integrator, camera, depth, T, 2, &stats).ok());
+    ASSERT_TRUE(f.tested.layer.integrateDepthWith(&f.tested.integrator, f.camera, f.depth, T, 2, &stats).ok());
     EXPECT_GT(stats.voxels_updated, 0u);
   }
-  EXPECT_GT(serial.map.numBlocks(), 10u);
-  expectSameVoxels(serial.map, side.map);
-  expectSameVoxels(serial.layer.map(), side.layer.map());
-  EXPECT_EQ(side.integrator.threads(), 3);  // back to the caller's count, not the map's 2
+  EXPECT_GT(f.serial.map.numBlocks(), 10u);
+  expectSameVoxels(f.serial.map, f.tested.map);
+  expectSameVoxels(f.serial.layer.map(), f.tested.layer.map());
+  EXPECT_EQ(f.tested.integrator.threads(), 3);  // back to the caller's count, not the map's 2
 
   // A pose outside the bounds: the planning map's error, and the layer's when asked for.
   const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
   for (int threads : {1, 2}) {
     Status layer_status;
-    const Status s = side.layer.integrateDepthWith(&side.integrator, camera, depth, outside, threads, nullptr,
-                                                   &layer_status);
+    LayeredMap& t = f.tested;
+    const Status s =
+        t.layer.integrateDepthWith(&t.integrator, f.camera, f.depth, outside, threads, nullptr, &layer_status);
     EXPECT_NE(s.message().find("outside the map bounds"), std::string::npos) << threads;
-    EXPECT_FALSE(side.layer.integrateDepthWith(&side.integrator, camera, depth, outside, threads).ok()) << threads;
+    EXPECT_FALSE(t.layer.integrateDepthWith(&t.integrator, f.camera, f.depth, outside, threads).ok()) << threads;
     if (threads == 2) {
       EXPECT_FALSE(layer_status.ok());
     }
   }
-  expectSameVoxels(serial.map, side.map);
+  expectSameVoxels(f.serial.map, f.tested.map);
 }
 
 // The layer fused behind the caller (integrateDepthBehind, what nbv_mission
@@ -262,27 +259,23 @@ TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
   config.mesh_voxel_size = 0.05;
   FusionOrder f(config);
   ASSERT_NE(f.scene, nullptr);
-  const DepthCamera& camera = f.camera;
-  DepthImage& depth = f.depth;
-  const LayeredMap& serial = f.serial;
-  LayeredMap& behind = f.tested;
   for (int k = 0; k < 6; ++k) {
     const Transform T = f.frame(k);
     IntegrationStats stats;
-    ASSERT_TRUE(behind.layer.integrateDepthBehind(&behind.integrator, camera, depth, T, 2, &stats).ok());
+    ASSERT_TRUE(f.tested.layer.integrateDepthBehind(&f.tested.integrator, f.camera, f.depth, T, 2, &stats).ok());
     EXPECT_GT(stats.voxels_updated, 0u);
-    std::fill(depth.data.begin(), depth.data.end(), 1.0f);  // the caller reuses its buffer at once
+    std::fill(f.depth.data.begin(), f.depth.data.end(), 1.0f);  // the caller reuses its buffer at once
   }
-  ASSERT_TRUE(behind.layer.finish().ok());
-  EXPECT_GT(serial.layer.map().numBlocks(), 10u);
-  expectSameVoxels(serial.map, behind.map);
-  expectSameVoxels(serial.layer.map(), behind.layer.map());
-  EXPECT_EQ(behind.integrator.threads(), 3);
+  ASSERT_TRUE(f.tested.layer.finish().ok());
+  EXPECT_GT(f.serial.layer.map().numBlocks(), 10u);
+  expectSameVoxels(f.serial.map, f.tested.map);
+  expectSameVoxels(f.serial.layer.map(), f.tested.layer.map());
+  EXPECT_EQ(f.tested.integrator.threads(), 3);
   const Transform outside = lookingAlongX(Eigen::Vector3d(-5.0, 0.0, 0.0), 1.0);
-  const Status s = behind.layer.integrateDepthBehind(&behind.integrator, camera, depth, outside, 2);
+  const Status s = f.tested.layer.integrateDepthBehind(&f.tested.integrator, f.camera, f.depth, outside, 2);
   EXPECT_NE(s.message().find("outside the map bounds"), std::string::npos) << s.message();
-  EXPECT_TRUE(behind.layer.finish().ok());  // nothing was left in flight
-  expectSameVoxels(serial.layer.map(), behind.layer.map());
+  EXPECT_TRUE(f.tested.layer.finish().ok());  // nothing was left in flight
+  expectSameVoxels(f.serial.layer.map(), f.tested.layer.map());
 }
 
 TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
