@@ -6,8 +6,9 @@
 
 Reads RUN_DIR/trial_*/coverage.csv of every run directory (one nbv_mission
 --out each), plots the coverage of each trial against flight time and path
-length, with the mean over trials at the checkpoints they share, and the
-reference points given (for example Table 2's statue column: Table 2,36,92.3).
+length, with the mean over trials at the flight times they all have a
+checkpoint at, and the reference points given (for example Table 2's statue
+column: Table 2,36,92.3).
 Prints a Markdown table of the mean and, with --goal, when each trial first
 reached it (linear between checkpoints). Needs python3-matplotlib.
 """
@@ -63,10 +64,13 @@ def main():
             return 2
         references.append((parts[0], float(parts[1]), float(parts[2])))
 
-    # The mean over the checkpoints every trial has (the last row of each is its end).
-    shared = min(len(points) - 1 for _, points in trials)
-    mean = [(sum(p[i][0] for _, p in trials) / len(trials), sum(p[i][1] for _, p in trials) / len(trials),
-             sum(p[i][2] for _, p in trials) / len(trials)) for i in range(shared)]
+    # The mean at the flight times every trial has a checkpoint at (to 0.01 min).
+    by_time = {}
+    for _, points in trials:
+        for t, p, c in points:
+            by_time.setdefault(round(t, 2), []).append((p, c))
+    mean = [(t, sum(p for p, _ in v) / len(v), sum(c for _, c in v) / len(v))
+            for t, v in sorted(by_time.items()) if len(v) == len(trials)]
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12, 5))
     for name, points in trials:
