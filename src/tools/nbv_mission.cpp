@@ -182,12 +182,11 @@ int main(int argc, char** argv) {
   std::vector<Eigen::Vector3d> probe;
   for (const Eigen::Vector3f& p : probe_cloud.points) probe.push_back(p.cast<double>());
 
-  const EvalConfig eval_config = missionEvalConfig(config);
-  // --coverage-every: the ground-truth side of the evaluation, once for all checkpoints.
-  EvalResult checkpoint_eval;
-  if (coverage_every > 0.0) {
-    if (Status s = Evaluator(eval_config).prepareGroundTruth(mesh, &checkpoint_eval); !s) return fail(s.message());
-  }
+  const Evaluator evaluator(missionEvalConfig(config));
+  // The ground-truth side of the evaluation (sampling, visibility pruning),
+  // once for every trial and checkpoint; each scoring replaces the rest.
+  EvalResult eval;
+  if (Status s = evaluator.prepareGroundTruth(mesh, &eval); !s) return fail(s.message());
   std::vector<TrialRow> rows;
   for (int k = 0; k < trials; ++k) {
     MissionConfig trial_config = config;
@@ -205,17 +204,18 @@ int main(int argc, char** argv) {
     });
     std::vector<CoveragePoint> coverage_over_time;
     Status checkpoint_status;
+    TriangleMesh checkpoint_mesh;  // of the last checkpoint, which `eval` holds the scoring of
     if (coverage_every > 0.0) {
       runner.setCheckpoints(coverage_every, [&](double t, double path_length, const TsdfMap& mesh_map) {
         MeshExtractor checkpoint_mesher;
         checkpoint_mesher.update(mesh_map);
-        Status s = Evaluator(eval_config).scoreReconstruction(checkpoint_mesher.mesh(), &checkpoint_eval);
+        checkpoint_mesh = checkpoint_mesher.mesh();
+        Status s = evaluator.scoreReconstruction(checkpoint_mesh, &eval);
         if (!s) {
           if (checkpoint_status) checkpoint_status = s;
           return;
         }
-        coverage_over_time.push_back(
-            {t, path_length, checkpoint_eval.coverage.coverage(), checkpoint_eval.error_stats.rmse});
+        coverage_over_time.push_back({t, path_length, eval.coverage.coverage(), eval.error_stats.rmse});
         std::printf("  coverage at %5.1f min, %6.1f m of path: %.2f %%\n", t / 60.0, path_length,
                     100.0 * coverage_over_time.back().coverage);
         std::fflush(stdout);
@@ -226,9 +226,16 @@ int main(int argc, char** argv) {
       return fail("trial " + std::to_string(k) + ": coverage checkpoint: " + checkpoint_status.message());
     }
     if (!r.status) return fail("trial " + std::to_string(k) + ": " + r.status.message());
-    MeshExtractor mesher;
-    mesher.update(runner.meshMap());
-    const TriangleMesh reconstruction = mesher.mesh();
+    // The checkpoint at the end (--coverage-every) already meshed and scored the reconstruction.
+    const bool scored = !coverage_over_time.empty() && coverage_over_time.back().t == r.flight_time;
+    TriangleMesh reconstruction;
+    if (scored) {
+      reconstruction = std::move(checkpoint_mesh);
+    } else {
+      MeshExtractor mesher;
+      mesher.update(runner.meshMap());
+      reconstruction = mesher.mesh();
+    }
     if (!reconstruction.empty()) {
       if (Status s = saveMesh(reconstruction, dir + "/reconstruction.ply"); !s) return fail(s.message());
     }
@@ -237,8 +244,9 @@ int main(int argc, char** argv) {
     if (coverage_every > 0.0) {
       if (Status s = writeCoverageCsv(dir, coverage_over_time); !s) return fail(s.message());
     }
-    EvalResult eval;
-    if (Status s = Evaluator(eval_config).evaluate(mesh, reconstruction, &eval); !s) return fail(s.message());
+    if (!scored) {
+      if (Status s = evaluator.scoreReconstruction(reconstruction, &eval); !s) return fail(s.message());
+    }
     if (Status s = ReportWriter(eval, {dir + "/reconstruction.ply", config.scene.scene}).write(dir + "/eval"); !s) {
       return fail(s.message());
     }
@@ -308,7 +316,7 @@ int main(int argc, char** argv) {
   };
   JsonWriter json;
   json.beginObject().value("scene", config.scene.scene).value("config", config_file).value("trials", trials);
-  json.value("seed", seed).value("voxel_size_m", config.tsdf.voxel_size).value("e_max_m", eval_config.eMax());
+  json.value("seed", seed).value("voxel_size_m", config.tsdf.voxel_size).value("e_max_m", eval.config.eMax());
   json.beginObject("summary");
   for (Stat& s : stats) {
     double m, sd;
@@ -347,7 +355,7 @@ int main(int argc, char** argv) {
   std::ofstream md(out_dir + "/report.md");
   md << "# Mission on `" << config.scene.scene << "` (" << trials << " trial(s), seeds " << seed << ".."
      << seed + trials - 1 << ")\n\nConfig: `" << config_file << "`, voxel " << config.tsdf.voxel_size
-     << " m, e_max " << 100.0 * eval_config.eMax() << " cm.\n\n"
+     << " m, e_max " << 100.0 * eval.config.eMax() << " cm.\n\n"
      << "| trial | seed | completed | path [m] | time [min] | coverage [%] | mean [cm] | std [cm] | RMSE [cm] | "
         "wall [s] | frontier updates | full / local | legs / failures | blacklisted |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";

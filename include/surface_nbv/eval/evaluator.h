@@ -21,6 +21,9 @@ namespace surface_nbv {
 
 struct EvalTimings {
   double sample_s = 0.0, free_space_s = 0.0, visibility_s = 0.0, coverage_s = 0.0, m3c2_s = 0.0, total_s = 0.0;
+  // The ground-truth side's share (prepareGroundTruth), which every scoring
+  // adds to its own: its sampling, and all of it.
+  double ground_truth_sample_s = 0.0, ground_truth_s = 0.0;
 };
 
 struct EvalResult {
