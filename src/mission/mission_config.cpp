@@ -167,6 +167,9 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("threads", &c->threads);
   m.get("seed", &c->seed);
   m.get("collision_radius", &c->path.collision_radius);
+  m.get("epsilon", &c->surface.epsilon);
+  m.get("parallel_distance", &c->surface.parallel_distance);
+  m.get("parallel_cos", &c->surface.parallel_cos);
   m.get("path_time_budget", &c->path.time_budget);
   m.get("path_iterations", &c->path.iteration_budget);
   m.get("path_lattice_step", &c->path.lattice_step);
@@ -194,12 +197,17 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);
   m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
+  std::string objective = toString(c->explorer.graph.objective);
+  m.get("tour_objective", &objective);
   std::string policy = toString(c->tsdf.invalid_pixels);
   m.get("invalid_pixels", &policy);
   m.refuseUnknown();
   if (!m.status()) return Status::Error(file + ": " + m.status().message());
   if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {
     return Status::Error(file + ": mission/invalid_pixels expected 'ignore', 'clear' or 'clear_inf'");
+  }
+  if (!parseTourObjective(objective, &c->explorer.graph.objective)) {
+    return Status::Error(file + ": mission/tour_objective expected 'product' or 'sum'");
   }
   c->surface.camera = c->camera;
   c->explorer.gaze.camera = c->camera;

@@ -133,6 +133,21 @@ IntraPaths intraPaths(const Cluster& cluster, const std::vector<Eigen::Vector4d>
 
 }  // namespace
 
+const char* toString(TourObjective objective) {
+  return objective == TourObjective::kSum ? "sum" : "product";
+}
+
+bool parseTourObjective(const std::string& text, TourObjective* objective) {
+  if (text == "product") {
+    *objective = TourObjective::kProduct;
+  } else if (text == "sum") {
+    *objective = TourObjective::kSum;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 Status ClusterGraphConfig::validate() const {
   if (!std::isfinite(lambda_tc) || lambda_tc < 0.0) return Status::Error("lambda_tc must be finite and >= 0");
   if (!std::isfinite(lambda_ic) || lambda_ic < 0.0) return Status::Error("lambda_ic must be finite and >= 0");
@@ -195,8 +210,10 @@ ClusterGraph::ClusterGraph(const Frontier& frontier, const Eigen::Vector4d& uav,
       e.reachable = std::isfinite(e.d_kl) && std::isfinite(e.d_lm);
       if (e.reachable && std::isfinite(e.gain) && e.gain > 0.0) {
         e.utility = e.gain * std::exp(-config.lambda_tc * e.d_kl - config.lambda_ic * e.d_lm);
-        e.cost = std::min(CostMatrix::kUnreachable,
-                          utilityToCost(e.d_kl, e.d_lm, e.gain, g_max, config.lambda_tc, config.lambda_ic));
+        e.cost = config.objective == TourObjective::kSum
+                     ? utilityToSumCost(e.utility, g_max)
+                     : std::min(CostMatrix::kUnreachable,
+                                utilityToCost(e.d_kl, e.d_lm, e.gain, g_max, config.lambda_tc, config.lambda_ic));
       }
       costs_.at(u, v) = e.cost;
     }

@@ -61,4 +61,8 @@ double utilityToCost(double d_kl, double d_lm, double g_v, double g_max, double 
   return lambda_tc * d_kl + lambda_ic * d_lm - std::log(g_v) + std::log(g_max);
 }
 
+double utilityToSumCost(double f_uv, double g_max) {
+  return kSumCostScale * std::clamp(1.0 - f_uv / g_max, 0.0, 1.0);
+}
+
 }  // namespace surface_nbv

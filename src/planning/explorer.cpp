@@ -461,10 +461,11 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     have_target_ = false;
     path_.clear();
   }
-  seen_ises_ = seen_ises_ || !frontier.ises.empty();
+  seen_ises_ = seen_ises_ || !frontier.complete();
   if (!seen_ises_ && ++empty_updates_ < config_.empty_updates_before_done) {
     d.action = ExplorerAction::kHover;
-    d.message = "no surface observed yet (" + std::to_string(empty_updates_) + " empty frontier(s))";
+    d.message = "no ISE of C_ins observed yet (" + std::to_string(empty_updates_) + " frontier(s) without one, " +
+                std::to_string(frontier.remaining) + " ISE(s) in C_rem)";
     d.timings.total_ms = msSince(t0);
     stats_.last = d.timings;
     return d;

@@ -45,8 +45,9 @@ Status PlannerNodeConfig::validate() const {
 namespace {
 
 // The explorer's keys, as the mission section of the scene's YAML names them
-// (nbv_mission reads the same section) and as private parameters.
-void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
+// (nbv_mission reads the same section) and as private parameters. An
+// unknown tour_objective is an error naming the key.
+Status readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("match_radius", &e->match_radius);
   r->get("reach_tolerance", &e->reach_tolerance);
   r->get("max_failures", &e->max_failures);
@@ -68,6 +69,12 @@ void readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("check_reachable", &e->check_reachable);
   r->get("reach_clearance", &e->reach_clearance);
   r->get("empty_updates_before_done", &e->empty_updates_before_done);
+  std::string objective = toString(e->graph.objective);
+  r->get("tour_objective", &objective);
+  if (!parseTourObjective(objective, &e->graph.objective)) {
+    return Status::Error(r->ns() + "/tour_objective expected 'product' or 'sum'");
+  }
+  return Status::Ok();
 }
 
 }  // namespace
@@ -79,7 +86,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   // The mission section first (the same settings as the headless runner),
   // then the node's own parameters over it.
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
-  readExplorerKeys(&mission, &c->explorer);
+  if (Status st = readExplorerKeys(&mission, &c->explorer); !st) return st;
   mission.get("path_iterations", &c->path.iteration_budget);
   mission.get("path_time_budget", &c->path.time_budget);
   mission.get("path_lattice_step", &c->path.lattice_step);
@@ -93,7 +100,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   if (!(c->max_flight_time >= 0.0) || !std::isfinite(c->max_flight_time)) {
     return Status::Error(mission.ns() + "/max_flight_time expected >= 0 s (0: no limit)");
   }
-  readExplorerKeys(&reader, &c->explorer);
+  if (Status st = readExplorerKeys(&reader, &c->explorer); !st) return st;
   reader.get("world_frame", &c->world_frame);
   reader.get("replan_rate", &c->replan_rate);
   reader.get("prompt_ticks", &c->prompt_ticks);

@@ -102,6 +102,12 @@ TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   EXPECT_NE(s.message().find("nbv/voxel_size has the wrong type"), std::string::npos) << s.message();
   s = loadMissionConfig(writeTemp("start.yaml", "mission:\n  start: [1, 2, 3]\n"), &c);
   EXPECT_NE(s.message().find("mission/start expected [x, y, z, yaw]"), std::string::npos) << s.message();
+  s = loadMissionConfig(writeTemp("objective.yaml", "mission:\n  tour_objective: total\n"), &c);
+  EXPECT_NE(s.message().find("mission/tour_objective expected 'product' or 'sum'"), std::string::npos)
+      << s.message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("sum.yaml", "mission:\n  tour_objective: sum\n"), &c).ok());
+  EXPECT_EQ(c.explorer.graph.objective, TourObjective::kSum);
   s = loadMissionConfig("/nonexistent/mission.yaml", &c);
   EXPECT_NE(s.message().find("cannot read"), std::string::npos) << s.message();
   c = MissionConfig();

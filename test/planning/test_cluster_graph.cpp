@@ -101,6 +101,67 @@ TEST(ClusterGraph, HandComputedWeightsEq4Eq5) {
   EXPECT_TRUE(plan.unreachable.empty());
 }
 
+// The two tour objectives on a line: A (gain 0.01) 1 m ahead of the UAV, B
+// and C (gain 1) 3 and 4 m behind it. The product of the utilities ignores
+// the gains (each cluster is entered once) and takes the shortest path,
+// A first (6 m against 9 m); the sum (the paper's total utility) flies to
+// B and C first: 0.407 + 0.741 + 0.002 = 1.150 against 1.049 for A first.
+// Either way the plan is the best of all 6 orders by its own objective.
+TEST(ClusterGraph, SumObjectiveMaximisesTheTotalUtilityProductTheShortestPath) {
+  Frontier f;
+  addCluster(f, {{1, 0, 0}}, 0.01);
+  addCluster(f, {{-3, 0, 0}}, 1.0);
+  addCluster(f, {{-4, 0, 0}}, 1.0);
+  for (TourObjective objective : {TourObjective::kProduct, TourObjective::kSum}) {
+    ClusterGraphConfig config;
+    config.objective = objective;
+    const ClusterGraph g(f, Eigen::Vector4d::Zero(), euclid, config);
+    ASSERT_TRUE(g.status()) << g.status().message();
+    const TourPlan plan = planTour(g);
+    ASSERT_EQ(plan.status, TourPlanStatus::kOk) << plan.message;
+    std::vector<int> order = {0, 1, 2};
+    double best_sum = 0.0, best_product = 0.0;
+    do {
+      double sum = 0.0, product = 1.0;
+      int from = 0;
+      for (int c : order) {
+        sum += g.edge(from, c + 1).utility;
+        product *= g.edge(from, c + 1).utility;
+        from = c + 1;
+      }
+      best_sum = std::max(best_sum, sum);
+      best_product = std::max(best_product, product);
+    } while (std::next_permutation(order.begin(), order.end()));
+    double product = 1.0;
+    int from = 0;
+    for (int c : plan.clusters) product *= g.edge(from, c + 1).utility, from = c + 1;
+    if (objective == TourObjective::kSum) {
+      EXPECT_EQ(plan.clusters, (std::vector<int>{1, 2, 0}));
+      EXPECT_NEAR(plan.utility, best_sum, 1e-12);
+      for (int v = 1; v <= 3; ++v) {
+        const ClusterEdge& e = g.edge(0, v);
+        EXPECT_NEAR(e.cost, utilityToSumCost(e.utility, 1.0), 1e-12);
+        EXPECT_GE(e.cost, 0.0);
+        EXPECT_LE(e.cost, kSumCostScale);
+      }
+    } else {
+      EXPECT_EQ(plan.clusters, (std::vector<int>{0, 1, 2}));
+      EXPECT_NEAR(product, best_product, 1e-15);
+      EXPECT_LT(plan.utility, best_sum - 0.05);
+    }
+  }
+  TourObjective parsed = TourObjective::kProduct;
+  EXPECT_TRUE(parseTourObjective("sum", &parsed));
+  EXPECT_EQ(parsed, TourObjective::kSum);
+  EXPECT_STREQ(toString(parsed), "sum");
+  EXPECT_TRUE(parseTourObjective("product", &parsed));
+  EXPECT_EQ(parsed, TourObjective::kProduct);
+  EXPECT_FALSE(parseTourObjective("Sum", &parsed));
+  EXPECT_EQ(parsed, TourObjective::kProduct);
+  EXPECT_DOUBLE_EQ(utilityToSumCost(0.0, 0.5), kSumCostScale);
+  EXPECT_DOUBLE_EQ(utilityToSumCost(0.5, 0.5), 0.0);
+}
+
 TEST(ClusterGraph, ExactIntraPathMatchesBruteForce) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-10, 10);

@@ -62,10 +62,14 @@ Frontier nearAndBehindTheWall() {
   return makeFrontier({{{-3, 2, 2.5}, {-3, 3, 2.5}}, {{4, -3, 2.5}, {4, -4, 2.5}}});
 }
 
+// Once an ISE of C_ins was seen, a frontier whose ISEs are all in C_rem ends
+// the mission at once.
 TEST(Explorer, CompleteFrontierEndsTheMission) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());
   ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  ASSERT_EQ(explorer.update(makeFrontier({{Eigen::Vector3d(-2.0, -3.0, 2.5)}}), kUav, false).action,
+            ExplorerAction::kFly);
   Frontier f;
   Ise rem;
   rem.remaining = true;
@@ -87,6 +91,22 @@ TEST(Explorer, EmptyFirstFrontiersHoverBeforeTheyEndTheMission) {
   EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kHover);
   EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kHover);
   EXPECT_EQ(explorer.update(Frontier(), kUav, false).action, ExplorerAction::kDone);
+  // First frames whose ISEs all wait in C_rem (no free space known around
+  // them yet; a CI run under load ended the faults rostest this way at 0 m)
+  // hover the same way, then an ISE of C_ins lets the mission fly.
+  Frontier only_rem;
+  Ise rem;
+  rem.remaining = true;
+  only_rem.ises.assign(5, rem);
+  only_rem.remaining = 5;
+  Explorer waiting(config, pathConfig());
+  ASSERT_TRUE(waiting.setMap(&world.collision(), world.bounds()).ok());
+  const ExplorerDecision held = waiting.update(only_rem, kUav, false);
+  EXPECT_EQ(held.action, ExplorerAction::kHover);
+  EXPECT_NE(held.message.find("5 ISE(s) in C_rem"), std::string::npos) << held.message;
+  EXPECT_EQ(waiting.update(only_rem, kUav, false).action, ExplorerAction::kHover);
+  EXPECT_EQ(waiting.update(makeFrontier({{Eigen::Vector3d(-2.0, -3.0, 2.5)}}), kUav, false).action,
+            ExplorerAction::kFly);
   // Once an ISE was seen, an empty frontier is complete at once.
   Explorer seen(config, pathConfig());
   ASSERT_TRUE(seen.setMap(&world.collision(), world.bounds()).ok());

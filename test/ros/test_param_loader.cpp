@@ -5,6 +5,7 @@
 #include <ros/ros.h>
 
 #include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/scripted_flight_server.h"
 #include "surface_nbv/ros/sim_params.h"
 
@@ -190,6 +191,39 @@ TEST(ParamLoader, MapperRefusesBadValues) {
     EXPECT_FALSE(s.ok()) << c.key;
     EXPECT_NE(s.message().find(c.expect), std::string::npos) << c.key << ": " << s.message();
   }
+}
+
+// The tour objective comes from the YAML's mission section like the other
+// explorer keys, a private parameter overrides it, and an unknown one stops
+// the node naming the key.
+TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
+  const auto load = [](const std::string& base, PlannerNodeConfig* config) {
+    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
+    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
+    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
+  };
+  PlannerNodeConfig config;
+  ASSERT_TRUE(load("/objective0", &config).ok());
+  EXPECT_EQ(config.explorer.graph.objective, TourObjective::kProduct);
+
+  ros::param::set("/objective1/mission/tour_objective", std::string("sum"));
+  config = PlannerNodeConfig();
+  const Status sum = load("/objective1", &config);
+  ASSERT_TRUE(sum.ok()) << sum.message();
+  EXPECT_EQ(config.explorer.graph.objective, TourObjective::kSum);
+
+  ros::param::set("/objective2/mission/tour_objective", std::string("sum"));
+  ros::param::set("/objective2/nbv_planner/tour_objective", std::string("product"));
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(load("/objective2", &config).ok());
+  EXPECT_EQ(config.explorer.graph.objective, TourObjective::kProduct);
+
+  ros::param::set("/objective3/mission/tour_objective", std::string("total"));
+  config = PlannerNodeConfig();
+  const Status bad = load("/objective3", &config);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("/objective3/mission/tour_objective expected 'product' or 'sum'"), std::string::npos)
+      << bad.message();
 }
 
 int main(int argc, char** argv) {

@@ -11,7 +11,9 @@
 //          (end q_m free): exact (Held-Karp over subsets) for <= kExactClusterSize
 //          viewpoints, nearest neighbour + 2-opt otherwise,
 //   f_uv   = g(v) exp(-lambda_tc d_kl - lambda_ic d_lm)   (eq. 5),
-//   cost   = utilityToCost(...) = -log f_uv + log g_max >= 0, the TSP arc cost.
+//   cost   = utilityToCost(...) = -log f_uv + log g_max >= 0, the TSP arc cost
+//            (objective kProduct), or utilityToSumCost(f_uv, g_max) =
+//            kSumCostScale (1 - f_uv / g_max) (objective kSum).
 //
 // Simplification (documented, deliberate): in a pairwise graph the way u was
 // entered is not known, so u's exit is fixed per cluster: q_k = the end of u's
@@ -39,9 +41,22 @@
 
 namespace surface_nbv {
 
+// What the tour maximises over its arcs. kProduct: the product of the
+// utilities f_uv (arc cost -log f_uv); each cluster is entered once, so the
+// gains drop out and the tour is the shortest open path in lambda-weighted
+// length. kSum: their sum, the paper's "total utility" (arc cost
+// proportional to g_max - f_uv); a long hop costs about as much as any
+// other long hop, and short hops into clusters of high gain pay most.
+enum class TourObjective { kProduct, kSum };
+
+const char* toString(TourObjective objective);
+// "product" or "sum"; false for anything else.
+bool parseTourObjective(const std::string& text, TourObjective* objective);
+
 struct ClusterGraphConfig {
   double lambda_tc = 0.3;   // weight of the inter-cluster travel d(tau_kl), 1/m
   double lambda_ic = 0.03;  // weight of the intra-cluster travel d(tau_lm), 1/m
+  TourObjective objective = TourObjective::kProduct;
 
   // Both finite and >= 0.
   Status validate() const;

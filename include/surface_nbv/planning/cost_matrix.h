@@ -48,4 +48,13 @@ class CostMatrix {
 // product of the utilities f_uv along the tour.
 double utilityToCost(double d_kl, double d_lm, double g_v, double g_max, double lambda_tc, double lambda_ic);
 
+// The tour cost that maximises the sum of the utilities instead:
+// kSumCostScale * (1 - f_uv / g_max), in [0, kSumCostScale] for 0 <= f_uv <=
+// g_max. Every open path from a fixed start has one arc per non-start node,
+// so minimising the sum of these costs maximises the sum of the f_uv. The
+// scale keeps the differences between tours far above the rounding of the
+// Jonker-Volgenant offsets (jonker_volgenant.h).
+constexpr double kSumCostScale = 10.0;
+double utilityToSumCost(double f_uv, double g_max);
+
 }  // namespace surface_nbv

@@ -94,9 +94,12 @@ struct ExplorerConfig {
   // its whole budget on every attempt: minutes of wall time per decision
   // and the stalls of docs/planner_experiments.md.
   double reach_clearance = 0.0;
-  // A frontier without any ISE before any ISE was ever seen is a map that
-  // has seen nothing yet (a late first frame), not a finished mission: the
-  // explorer hovers through this many such frontiers before it says complete.
+  // A frontier without any ISE of C_ins before one was ever seen is a map
+  // that has not seen enough yet, not a finished mission: a late first frame
+  // (no ISE at all), or first frames whose ISEs all wait in C_rem because no
+  // free space around them is known yet (dropped frames, a slow mapper).
+  // The explorer hovers through this many such frontiers before it says
+  // complete.
   int empty_updates_before_done = 10;
 
   // Names the first bad key.
@@ -242,8 +245,8 @@ class Explorer {
   std::vector<Eigen::Vector4d> path_;   // current leg
   bool have_target_ = false;
   bool requested_ = false;
-  bool seen_ises_ = false;      // some frontier held an ISE
-  int empty_updates_ = 0;       // frontiers without ISEs while !seen_ises_
+  bool seen_ises_ = false;      // some frontier held an ISE of C_ins
+  int empty_updates_ = 0;       // frontiers without one while !seen_ises_
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
