@@ -181,7 +181,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("blacklist_radius", &c->explorer.blacklist_radius);
   m.get("always_full", &c->explorer.always_full);
   m.get("full_on_leg_end", &c->explorer.full_on_leg_end);
-  m.get("refine_tour", &c->explorer.refine_tour);
   m.get("travel_yaw", &c->explorer.travel_yaw);
   m.get("turn_distance", &c->explorer.turn_distance);
   m.get("turn_lead", &c->explorer.turn_lead);

@@ -7,16 +7,12 @@
 #include <unordered_map>
 
 #include "surface_nbv/map/collision_map.h"
-#include "surface_nbv/planning/tour_refine.h"
 #include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// refine_tour: 2-opt passes per local update (each pass tries every move).
-constexpr int kRefinePasses = 20;
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -270,9 +266,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   }
   if (inserted > 0 && d->reason == ReplanReason::kNone) d->reason = ReplanReason::kNewIses;
   if (inserted > 0 || removed) ++stats_.local_updates;
-  if (config_.refine_tour && (inserted > 0 || removed)) {
-    stats_.refine_moves += twoOptOpenPath(uav.head<3>(), have_target_ ? 1 : 0, kRefinePasses, &tour_);
-  }
   d->timings.tour_ms = msSince(t0);
   return true;
 }

@@ -55,7 +55,6 @@ Status readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("blacklist_radius", &e->blacklist_radius);
   r->get("always_full", &e->always_full);
   r->get("full_on_leg_end", &e->full_on_leg_end);
-  r->get("refine_tour", &e->refine_tour);
   r->get("travel_yaw", &e->travel_yaw);
   r->get("turn_distance", &e->turn_distance);
   r->get("turn_lead", &e->turn_lead);

@@ -4,10 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "planning_test_worlds.h"
-#include "surface_nbv/planning/tour_refine.h"
 
 using namespace surface_nbv;
 
@@ -185,45 +182,6 @@ TEST(Explorer, LocalUpdateDropsCoveredViewpointsAndInsertsNewOnes) {
   ASSERT_EQ(explorer.tour().size(), 3u);
   EXPECT_EQ(explorer.tour().front(), target);  // the current target stays first
   for (const Eigen::Vector4d& q : explorer.tour()) EXPECT_LT(q.x(), 0.0) << "covered viewpoint kept";
-}
-
-// refine_tour: after a local update that inserts viewpoints, the tour is the
-// same set of configurations with the current target first, no longer than
-// the plain explorer's, and no 2-opt move shortens it any more.
-TEST(Explorer, RefinedTourKeepsTheTargetAndLeavesNoImprovingMove) {
-  WallWorld world(true);
-  ExplorerConfig refined_config;
-  refined_config.refine_tour = true;
-  Explorer plain(ExplorerConfig(), pathConfig()), refined(refined_config, pathConfig());
-  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
-  ASSERT_TRUE(refined.setMap(&world.collision(), world.bounds()).ok());
-  const Frontier first = makeFrontier({{{-3, 2, 2.5}}});
-  ASSERT_EQ(plain.update(first, kUav, false).action, ExplorerAction::kFly);
-  ASSERT_EQ(refined.update(first, kUav, false).action, ExplorerAction::kFly);
-  ASSERT_EQ(plain.tour(), refined.tour());
-  // Four viewpoints appear along the wall, in an order that leaves cheapest
-  // insertion a detour: target, (-2.9, -0.9), (-2, -4.2), back to (-2.3,
-  // 0.8), (-1.8, 2.7) is 4.7 m longer than sweeping them in order.
-  const Frontier second = makeFrontier(
-      {{{-3, 2, 2.5}}, {{-1.8, 2.7, 2.5}}, {{-2.3, 0.8, 2.5}}, {{-2.9, -0.9, 2.5}}, {{-2.0, -4.2, 2.5}}});
-  plain.update(second, kUav, false);
-  refined.update(second, kUav, false);
-  ASSERT_EQ(plain.tour().size(), 5u);
-  ASSERT_EQ(refined.tour().size(), 5u);
-  EXPECT_EQ(refined.tour().front(), plain.tour().front());
-  const Eigen::Vector3d uav = kUav.head<3>();
-  EXPECT_LT(openPathLength(uav, refined.tour()), openPathLength(uav, plain.tour()) - 4.0);
-  EXPECT_GT(refined.stats().refine_moves, 0u);
-  EXPECT_EQ(plain.stats().refine_moves, 0u);
-  std::vector<Eigen::Vector4d> again = refined.tour();
-  EXPECT_EQ(twoOptOpenPath(uav, 1, 1, &again), 0u);
-  std::vector<Eigen::Vector4d> a = plain.tour(), b = refined.tour();
-  const auto byXy = [](const Eigen::Vector4d& p, const Eigen::Vector4d& q) {
-    return p.x() != q.x() ? p.x() < q.x() : p.y() < q.y();
-  };
-  std::sort(a.begin(), a.end(), byXy);
-  std::sort(b.begin(), b.end(), byXy);
-  EXPECT_EQ(a, b);
 }
 
 TEST(Explorer, CoveredTargetGivesALegToTheNextViewpoint) {

@@ -54,10 +54,6 @@ struct ExplorerConfig {
   // ended (reached, failed or covered), not only when the tour ran out:
   // cheapest insertions then never pile up into a zigzag tour.
   bool full_on_leg_end = false;
-  // After each local update, 2-opt the tour's order on straight-line
-  // distances from the UAV (tour_refine.h), the current target kept first:
-  // removes the crossings cheapest insertions leave, keeps the rest.
-  bool refine_tour = false;
   // Path yaw: false interpolates from the start yaw to the target's along the
   // whole leg; true looks along the direction of travel on each segment and
   // turns to the target's yaw over the last turn_distance metres.
@@ -165,7 +161,6 @@ struct ExplorerStats {
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
-  size_t refine_moves = 0;      // refine_tour: 2-opt moves made
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
