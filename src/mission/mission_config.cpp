@@ -197,6 +197,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);
   m.get("max_leg_attempts", &c->explorer.max_leg_attempts);
+  m.get("leg_time_budget", &c->explorer.leg_time_budget);
   std::string objective = toString(c->explorer.graph.objective);
   m.get("tour_objective", &objective);
   std::string policy = toString(c->tsdf.invalid_pixels);

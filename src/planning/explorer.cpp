@@ -71,6 +71,9 @@ Status ExplorerConfig::validate() const {
     return Status::Error("blacklist_radius expected >= 0");
   }
   if (max_leg_attempts < 1) return Status::Error("max_leg_attempts expected >= 1");
+  if (!(leg_time_budget >= 0.0) || !std::isfinite(leg_time_budget)) {
+    return Status::Error("leg_time_budget expected >= 0 s (0: no limit)");
+  }
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
@@ -349,7 +352,17 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
     ++stats_.pooled;
   }
   if (config_.head_lookahead > 1 && !have_target_) promoteBestHead(uav);
+  const bool capped = config_.leg_time_budget > 0.0;
+  auto left = [this, capped] {
+    return capped ? std::chrono::duration<double>(leg_deadline_ - Clock::now()).count()
+                  : std::numeric_limits<double>::infinity();
+  };
+  bool spent = false;
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
+    if (left() <= 0.0) {
+      spent = true;
+      break;
+    }
     const Eigen::Vector4d target = tour_.front();
     if (config_.check_reachable && map_ != nullptr) {
       if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), planner_.clearance() + config_.reach_clearance);
@@ -363,13 +376,13 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
         continue;
       }
     }
-    PathResult leg = planner_.plan(from, target);
+    PathResult leg = planner_.plan(from, target, left());
     // The frontier's clearance test and the planner's (radius plus half a
     // motion-check step) differ slightly: a target just inside the planner's
     // margin is moved to the nearest point that passes, within reach_tolerance.
     if (leg.status == PathStatus::kInvalidGoal && map_ != nullptr) {
       Eigen::Vector4d moved = target;
-      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planner_.plan(from, moved);
+      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planner_.plan(from, moved, left());
     }
     d->path_status = leg.status;
     if (hasPath(leg.status)) {
@@ -397,6 +410,10 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   d->action = ExplorerAction::kHover;
   if (d->reason == ReplanReason::kNone) d->reason = ReplanReason::kTargetUnreachable;
   d->message = std::string("no path to a tour viewpoint (last: ") + toString(d->path_status) + ")";
+  if (spent) {
+    ++stats_.budget_stops;
+    d->message += "; leg_time_budget of " + std::to_string(config_.leg_time_budget) + " s spent";
+  }
   d->timings.path_ms = msSince(t0);
 }
 
@@ -444,6 +461,7 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
 
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
   const auto t0 = Clock::now();
+  leg_deadline_ = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.leg_time_budget));
   ExplorerDecision d;
   if (leg_finished && have_target_ && !tour_.empty()) {
     const Eigen::Vector4d target = tour_.front();
@@ -555,6 +573,7 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
 
 ExplorerDecision Explorer::checkPath(const Eigen::Vector4d& uav) {
   const auto t0 = Clock::now();
+  leg_deadline_ = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.leg_time_budget));
   ExplorerDecision d;
   if (have_target_ && pathBlocked(uav)) {
     ++stats_.paths_blocked;

@@ -290,7 +290,7 @@ std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdg
 
 double PathPlanner::clearance() const { return config_.collision_radius + 0.5 * impl_->resolution; }
 
-PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal) {
+PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal, double max_seconds) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   PathResult result;
@@ -313,7 +313,11 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   }
   if (!impl_->si->isValid(s.get())) return finish(PathStatus::kInvalidStart);
   if (!impl_->si->isValid(g.get())) return finish(PathStatus::kInvalidGoal);
-  if (config_.time_budget <= 0.0) return finish(PathStatus::kTimeout);
+  // The caller's cap covers the roadmap and the lattice together; the
+  // config's budget applies to each of them.
+  const double cap = std::isnan(max_seconds) ? 0.0 : max_seconds;
+  if (config_.time_budget <= 0.0 || cap <= 0.0) return finish(PathStatus::kTimeout);
+  const double budget_s = std::min(config_.time_budget, cap);
 
   auto pdef = std::make_shared<ob::ProblemDefinition>(impl_->si);
   pdef->setStartAndGoalStates(s, g);
@@ -324,7 +328,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   // it once per roadmap sample, so the count does not depend on timing.
   int evaluations = 0;
   const int budget = config_.iteration_budget;
-  ob::PlannerTerminationCondition ptc = ob::timedPlannerTerminationCondition(config_.time_budget);
+  ob::PlannerTerminationCondition ptc = ob::timedPlannerTerminationCondition(budget_s);
   if (budget > 0) {
     ptc = ob::plannerOrTerminationCondition(
         ptc, ob::PlannerTerminationCondition([&evaluations, budget] { return ++evaluations > budget; }));
@@ -334,7 +338,6 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   const int mode = !config_.stop_at_first_solution || config_.search == QuerySearch::kOmplSolve ? Roadmap::kGrowOnly
                    : config_.search == QuerySearch::kFast                                        ? Roadmap::kFastSearch
                                                                                                   : Roadmap::kOmplSearch;
-  const double budget_s = config_.time_budget;
   std::vector<Eigen::Vector3d> raw;
   const ob::PlannerStatus status =
       impl_->prm->query(ptc, [&elapsed, budget_s] { return elapsed() > budget_s; }, mode, &raw);
@@ -356,7 +359,8 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
     // The roadmap found nothing: the lattice search, when enabled, has its own
     // node budget (and the same wall-time budget again as a safety net).
     if (!(config_.lattice_step > 0.0)) return finish(failure);
-    const double lattice_deadline = elapsed() + budget_s;
+    const double lattice_deadline = std::min(elapsed() + budget_s, cap);
+    if (elapsed() >= lattice_deadline) return finish(PathStatus::kTimeout);
     const LatticeSearchResult lattice = latticeSearch(
         start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
         [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },

@@ -304,7 +304,9 @@ void NbvPlannerServer::writeReport() const {
   }
   json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
-  json.value("leg_failures", s.leg_failures).value("blacklisted", explorer_.blacklist().size()).endObject();
+  json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
+  json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
+  json.value("blacklisted", explorer_.blacklist().size()).endObject();
   const std::string path = config_.report_directory + "/mission_report.json";
   std::ofstream out(path);
   out << json.str();

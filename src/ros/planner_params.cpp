@@ -65,6 +65,7 @@ Status readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("gaze_min_ises", &e->gaze.min_ises);
   r->get("pool_unknown_below", &e->pool_unknown_below);
   r->get("max_leg_attempts", &e->max_leg_attempts);
+  r->get("leg_time_budget", &e->leg_time_budget);
   r->get("path_distances", &e->path_distances);
   r->get("check_reachable", &e->check_reachable);
   r->get("reach_clearance", &e->reach_clearance);

@@ -2,6 +2,8 @@
 // blacklisting, path checks and the stop reasons.
 #include "surface_nbv/planning/explorer.h"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "planning_test_worlds.h"
@@ -245,6 +247,30 @@ TEST(Explorer, UnreachableViewpointIsBlacklistedAfterMaxFailures) {
   ASSERT_EQ(explorer.blacklist().size(), 1u);
   EXPECT_NEAR((explorer.blacklist()[0] - Eigen::Vector3d(4, -3, 2.5)).norm(), 0.0, 1e-9);
   EXPECT_EQ(explorer.stats().leg_failures, 2u);
+}
+
+// Behind a closed wall every attempt would spend the planner's whole 10 s
+// budget, six of them per decision; leg_time_budget stops the decision after
+// the first, cut to 0.3 s, and it hovers. The next decision goes on down the
+// tour with a budget of its own.
+TEST(Explorer, LegTimeBudgetEndsTheAttemptsOfADecision) {
+  WallWorld world(false);
+  ExplorerConfig config;
+  config.leg_time_budget = 0.3;
+  PathPlannerConfig path = pathConfig();
+  path.iteration_budget = 0;  // bounded by time only: 10 s per attempt
+  Explorer explorer(config, path);
+  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  const Frontier f = makeFrontier({{{4, -3, 2.5}}, {{4, 3, 2.5}}, {{3, -4, 2.5}}, {{3, 4, 2.5}}});
+  for (size_t decision = 1; decision <= 2; ++decision) {
+    const ExplorerDecision d = explorer.update(f, kUav, false);
+    EXPECT_EQ(d.action, ExplorerAction::kHover) << d.message;
+    EXPECT_NE(d.message.find("leg_time_budget"), std::string::npos) << d.message;
+    EXPECT_EQ(explorer.stats().budget_stops, decision);
+    EXPECT_EQ(explorer.stats().leg_failures, decision) << "one cut attempt per decision";
+    EXPECT_EQ(d.path_status, PathStatus::kTimeout);
+    EXPECT_LT(d.timings.path_ms, 5000.0) << "an uncapped decision takes 60 s";
+  }
 }
 
 TEST(Explorer, ObstacleOnTheLegGivesANewFreeLeg) {
@@ -504,6 +530,11 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.head_lookahead = -1;
   EXPECT_NE(c.validate().message().find("head_lookahead"), std::string::npos);
+  for (double budget : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    c = ExplorerConfig();
+    c.leg_time_budget = budget;
+    EXPECT_NE(c.validate().message().find("leg_time_budget"), std::string::npos) << budget;
+  }
 }
 
 }  // namespace

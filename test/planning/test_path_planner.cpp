@@ -173,6 +173,38 @@ TEST(PathPlanner, ZeroTimeBudgetTimesOut) {
   EXPECT_LT(r.seconds, 0.5);
 }
 
+// A caller's cap ends a call long before the config's budget would, over
+// the roadmap and the lattice fallback together; a cap of 0 or NaN times
+// out at once, and a generous one changes nothing.
+TEST(PathPlanner, CallerCapBoundsACallBelowTheConfigBudget) {
+  const WallWorld closed(false);
+  PathPlannerConfig c = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
+  c.iteration_budget = 0;  // time only
+  c.time_budget = 20.0;
+  c.lattice_step = 0.25;
+  c.lattice_max_nodes = 50000000;
+  PathPlanner planner(c);
+  ASSERT_TRUE(planner.setMap(&closed.collision(), closed.bounds()));
+  const PathResult capped = planner.plan(kStart, kGoal, 0.3);
+  EXPECT_EQ(capped.status, PathStatus::kTimeout) << toString(capped.status);
+  EXPECT_TRUE(capped.path.empty());
+  EXPECT_LT(capped.seconds, 5.0) << "the config alone allows 40 s";
+  for (double cap : {0.0, -1.0, std::nan("")}) {
+    const PathResult r = planner.plan(kStart, kGoal, cap);
+    EXPECT_EQ(r.status, PathStatus::kTimeout) << cap;
+    EXPECT_LT(r.seconds, 0.5) << cap;
+  }
+  const WallWorld open(true);
+  PathPlannerConfig o = seededPlannerConfig(kSeed, kIterations, kTimeBudget);
+  PathPlanner a(o), b(o);
+  ASSERT_TRUE(a.setMap(&open.collision(), open.bounds()));
+  ASSERT_TRUE(b.setMap(&open.collision(), open.bounds()));
+  const PathResult uncapped = a.plan(kStart, kGoal), generous = b.plan(kStart, kGoal, 100.0);
+  ASSERT_TRUE(hasPath(uncapped.status));
+  ASSERT_EQ(uncapped.path.size(), generous.path.size());
+  for (size_t i = 0; i < uncapped.path.size(); ++i) EXPECT_TRUE(uncapped.path[i].isApprox(generous.path[i]));
+}
+
 TEST(PathPlanner, TinyBudgetsGiveAConsistentAnswer) {
   const WallWorld world(true);
   for (int budget : {1, 2, 5, 20}) {

@@ -226,6 +226,38 @@ TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
       << bad.message();
 }
 
+// The node caps a decision's leg attempts at 5 wall seconds unless the
+// mission section or a private parameter says otherwise (nbv_mission: none);
+// a negative budget stops the node naming the key.
+TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
+  const auto load = [](const std::string& base, PlannerNodeConfig* config) {
+    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
+    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
+    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
+  };
+  EXPECT_EQ(ExplorerConfig().leg_time_budget, 0.0);
+  PlannerNodeConfig config;
+  ASSERT_TRUE(load("/legbudget0", &config).ok());
+  EXPECT_EQ(config.explorer.leg_time_budget, 5.0);
+
+  ros::param::set("/legbudget1/mission/leg_time_budget", 2.5);
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(load("/legbudget1", &config).ok());
+  EXPECT_EQ(config.explorer.leg_time_budget, 2.5);
+
+  ros::param::set("/legbudget2/mission/leg_time_budget", 2.5);
+  ros::param::set("/legbudget2/nbv_planner/leg_time_budget", 0.0);
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(load("/legbudget2", &config).ok());
+  EXPECT_EQ(config.explorer.leg_time_budget, 0.0);
+
+  ros::param::set("/legbudget3/nbv_planner/leg_time_budget", -1.0);
+  config = PlannerNodeConfig();
+  const Status bad = load("/legbudget3", &config);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "test_param_loader");

@@ -29,6 +29,7 @@
 // Deterministic for a seed and iteration-bounded path planning. Not thread-safe.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,14 @@ struct ExplorerConfig {
   // The explorer hovers through this many such frontiers before it says
   // complete.
   int empty_updates_before_done = 10;
+  // Wall seconds all leg attempts of one decision (update() or checkPath())
+  // may take together; each plan() gets what is left (PathPlanner::plan's
+  // max_seconds) and no attempt starts once it is spent: the decision
+  // hovers and the next one goes on down the tour. Failing attempts at the
+  // path budget each (max_leg_attempts of them, twice when the tour is
+  // recomputed) held the ROS planner for minutes while the flight clock ran
+  // on. 0: no limit (the headless runner's default: its clock waits).
+  double leg_time_budget = 0.0;
 
   // Names the first bad key.
   Status validate() const;
@@ -161,6 +170,7 @@ struct ExplorerStats {
   size_t unreachable_skipped = 0;  // targets outside the UAV's free space (check_reachable)
   size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
+  size_t budget_stops = 0;      // decisions that spent leg_time_budget before finding a leg
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -239,6 +249,7 @@ class Explorer {
   AlignedBox bounds_;
   ReachableSpace reach_;
   bool reach_filled_ = false;  // for the current map version
+  std::chrono::steady_clock::time_point leg_deadline_;  // of the current decision (leg_time_budget > 0)
   const CollisionMap* map_ = nullptr;
   double collision_radius_ = 1.0;
   std::vector<Eigen::Vector4d> tour_;   // front = current target while have_target_

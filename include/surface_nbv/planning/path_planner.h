@@ -37,6 +37,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -125,7 +126,11 @@ class PathPlanner {
   // Drops the roadmap; the next plan() starts from scratch with the seed.
   void clear();
 
-  PathResult plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal);
+  // `max_seconds` caps this call's wall time below config.time_budget (the
+  // roadmap's and the lattice's together): a caller's budget for several
+  // calls (ExplorerConfig::leg_time_budget). Past it the answer is kTimeout.
+  PathResult plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal,
+                  double max_seconds = std::numeric_limits<double>::infinity());
   // Length of plan(start, goal) with yaw 0, or +infinity if it has no path.
   double pathLength(const Eigen::Vector3d& start, const Eigen::Vector3d& goal);
 

@@ -23,7 +23,15 @@ struct PlannerNodeConfig {
   // which nbv_mission reads too; private parameters override them.
   std::string mission_namespace = "/mission";
   TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
-  ExplorerConfig explorer;        // graph.lambda_tc, graph.lambda_ic from the shared namespace; the rest ~
+  // graph.lambda_tc, graph.lambda_ic from the shared namespace; the rest ~.
+  // The node's leg_time_budget defaults to 5 wall seconds (nbv_mission's to
+  // none): the flight goes on while the node plans, and failing leg attempts
+  // at the full path budget held it for minutes at 4x (README, session 15).
+  ExplorerConfig explorer = [] {
+    ExplorerConfig e;
+    e.leg_time_budget = 5.0;
+    return e;
+  }();
   PathPlannerConfig path;         // collision_radius, time_budget, seed of the PRM
   CollisionConfig collision;
   std::string world_frame = "world";
