@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <unordered_map>
 
@@ -358,12 +359,14 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
                   : std::numeric_limits<double>::infinity();
   };
   bool spent = false;
+  Eigen::Vector3d last_target = from.head<3>();
   for (int attempt = 0; attempt < config_.max_leg_attempts && !tour_.empty(); ++attempt) {
     if (left() <= 0.0) {
       spent = true;
       break;
     }
     const Eigen::Vector4d target = tour_.front();
+    last_target = target.head<3>();
     if (config_.check_reachable && map_ != nullptr) {
       if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), planner_.clearance() + config_.reach_clearance);
       reach_filled_ = true;
@@ -409,7 +412,11 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   path_.clear();
   d->action = ExplorerAction::kHover;
   if (d->reason == ReplanReason::kNone) d->reason = ReplanReason::kTargetUnreachable;
-  d->message = std::string("no path to a tour viewpoint (last: ") + toString(d->path_status) + ")";
+  char where[160];
+  std::snprintf(where, sizeof(where), "no path from (%.1f, %.1f, %.1f) to a tour viewpoint (last: %s, to (%.1f, %.1f, %.1f))",
+                from.x(), from.y(), from.z(), toString(d->path_status), last_target.x(), last_target.y(),
+                last_target.z());
+  d->message = where;
   if (spent) {
     ++stats_.budget_stops;
     d->message += "; leg_time_budget of " + std::to_string(config_.leg_time_budget) + " s spent";

@@ -165,14 +165,20 @@ void NbvPlannerServer::tick() {
     publishStatus();
     return;
   }
-  if ((now - odometry_time_).toSec() > config_.odometry_timeout) {
+  // Messages that waited in the callback queue while this node planned are
+  // not stale: after its own work the node gives its callbacks a timeout's
+  // grace to catch up. Without it every decision longer than the timeout
+  // (a quarter of a wall second at 4x) held the UAV for stale odometry.
+  const double since_busy = (now - busy_until_).toSec();
+  if ((now - odometry_time_).toSec() > config_.odometry_timeout && since_busy > config_.odometry_timeout) {
     if (state_ != State::kHovering || reason_ != "odometry_stale") {
       reason_ = "odometry_stale";
       hold("no odometry for " + std::to_string((now - odometry_time_).toSec()) + " s");
     }
     return;
   }
-  if (!feed_.stamp().isZero() && (now - feed_.stamp()).toSec() > config_.map_timeout) {
+  if (!feed_.stamp().isZero() && (now - feed_.stamp()).toSec() > config_.map_timeout &&
+      since_busy > config_.map_timeout) {
     if (state_ != State::kHovering || reason_ != "map_stale") {
       reason_ = "map_stale";
       hold("no map update for " + std::to_string((now - feed_.stamp()).toSec()) + " s");
@@ -208,6 +214,7 @@ void NbvPlannerServer::tick() {
     if (have_leg_ && feed_.refresh() != MapFeed::Refresh::kUnchanged) {
       explorer_.mapChanged();
       const ExplorerDecision d = explorer_.checkPath(uav_);
+      busy_until_ = ros::Time::now();
       if (d.action != ExplorerAction::kContinue) act(d);
     }
     return;
@@ -215,6 +222,7 @@ void NbvPlannerServer::tick() {
   frontier_new_ = false;
   if (feed_.refresh() != MapFeed::Refresh::kUnchanged) explorer_.mapChanged();
   const ExplorerDecision d = explorer_.update(frontier_, uav_, leg_ended && explorer_.hasTarget());
+  busy_until_ = ros::Time::now();
   if (leg_ended) have_leg_ = false;
   stats_.recordMs(d.timings.total_ms);
   act(d);
@@ -299,6 +307,8 @@ void NbvPlannerServer::writeReport() const {
   json.beginObject().value("state", stateName()).value("reason", reason_).value("message", message_);
   json.value("flight_time_s", flightTime()).value("max_flight_time_s", config_.max_flight_time);
   json.value("path_length_m", path_length_).value("holds", stats_.get("holds"));
+  json.beginObject("uav").value("x", uav_.x()).value("y", uav_.y()).value("z", uav_.z()).value("yaw", uav_.w());
+  json.endObject();
   for (const char* a : {"fly", "hover", "continue", "done"}) {
     json.value(std::string("decisions_") + a, stats_.get(std::string("decision_") + a));
   }

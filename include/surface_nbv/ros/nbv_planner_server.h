@@ -13,7 +13,9 @@
 //   - between frontiers, re-checks the current leg against the updated map
 //     (Explorer::checkPath) and re-plans it when blocked,
 //   - hovers when odometry is older than odometry_timeout or the map has not
-//     been updated for map_timeout (both ROS time), and resumes when they come back.
+//     been updated for map_timeout (both ROS time), and resumes when they come
+//     back; for a timeout after one of its own decisions it waits (what queued
+//     while it planned is not stale).
 // With max_flight_time > 0 the mission ends as on done (hold, DONE, report,
 // map and mesh) with reason max_flight_time once the odometry stamp is that
 // many seconds past the mission's first odometry (checked on each odometry
@@ -98,6 +100,7 @@ class NbvPlannerServer {
   Eigen::Vector4d uav_ = Eigen::Vector4d::Zero();  // x, y, z, yaw
   bool have_odometry_ = false;
   ros::Time odometry_time_, mission_start_;
+  ros::Time busy_until_;             // ROS time the last decision returned (stale checks wait a timeout past it)
   bool have_mission_start_ = false;  // mission_start_ is the mission's first odometry stamp
   double path_length_ = 0.0;
   bool spun_ = false;              // the take-off spin was sent
