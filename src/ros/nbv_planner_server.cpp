@@ -248,6 +248,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
     }
     case ExplorerAction::kHover:
       hold(d.message);
+      busy_until_ = ros::Time::now();
       return;
     case ExplorerAction::kDone:
       finish();
@@ -255,6 +256,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
   }
   publishStatus();
   publishMarkers();
+  busy_until_ = ros::Time::now();  // the markers (the roadmap's edges) take time too
 }
 
 bool NbvPlannerServer::cancelLeg() {
