@@ -1,0 +1,62 @@
+// The hand-made world of the nbv_planner rostests: a known free box
+// (12 x 12 x 5 m) split by a wall at x = 0, with a gap at y >= 1.5 m or
+// closed, and the helpers both tests use to feed the node.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+
+#include "surface_nbv/FrontierViewpoint.h"
+#include "surface_nbv/map/tsdf_map.h"
+
+namespace surface_nbv {
+namespace planner_test {
+
+inline TsdfConfig mapConfig() {  // as nbv_planner.test
+  TsdfConfig c;
+  c.voxel_size = 0.25;
+  c.w_th = 0.3f;
+  c.bounds = AlignedBox(Eigen::Vector3d(-6, -6, 0), Eigen::Vector3d(6, 6, 5));
+  return c;
+}
+
+inline void buildWorld(TsdfMap* map, bool gap = true) {
+  const Eigen::Vector3i& g = map->gridVoxels();
+  for (int z = 0; z < g.z(); ++z)
+    for (int y = 0; y < g.y(); ++y)
+      for (int x = 0; x < g.x(); ++x) {
+        const Eigen::Vector3i v(x, y, z);
+        const Eigen::Vector3d p = map->voxelCenter(v);
+        const bool wall = std::abs(p.x()) < 0.25 && (!gap || p.y() < 1.5);
+        TsdfVoxel* voxel = map->allocateVoxel(v);
+        voxel->w = 1.0f;
+        voxel->phi = wall ? -0.1f : 0.2f;
+        map->mutableBlock(TsdfMap::blockOfVoxel(v))->change_stamp = map->beginChange();
+      }
+}
+
+inline FrontierViewpoint viewpoint(double x, double y, double z, double yaw, std::vector<uint32_t> visible) {
+  FrontierViewpoint v;
+  v.pose.position.x = x;
+  v.pose.position.y = y;
+  v.pose.position.z = z;
+  v.pose.orientation.w = std::cos(0.5 * yaw);
+  v.pose.orientation.z = std::sin(0.5 * yaw);
+  v.visible_ises = visible;
+  v.unknown_fraction = 1.0;  // faces unseen space: never held back by pool_unknown_below
+  return v;
+}
+
+inline bool call(const std::string& name, std::string* message) {
+  std_srvs::Trigger t;
+  if (!ros::service::call(name, t)) return false;
+  *message = t.response.message;
+  return t.response.success;
+}
+
+}  // namespace planner_test
+}  // namespace surface_nbv
