@@ -220,12 +220,17 @@ void NbvPlannerServer::tick() {
     return;
   }
   frontier_new_ = false;
+  const ros::WallTime wall0 = ros::WallTime::now();
   if (feed_.refresh() != MapFeed::Refresh::kUnchanged) explorer_.mapChanged();
   const ExplorerDecision d = explorer_.update(frontier_, uav_, leg_ended && explorer_.hasTarget());
   busy_until_ = ros::Time::now();
   if (leg_ended) have_leg_ = false;
   stats_.recordMs(d.timings.total_ms);
   act(d);
+  // What the decisions cost the flight: wall time, and the flight seconds
+  // the UAV hovered at a leg's end until its next leg came.
+  decision_wall_s_.push_back((ros::WallTime::now() - wall0).toSec());
+  if (leg_ended) leg_end_wait_s_ += std::max(0.0, (ros::Time::now() - now).toSec());
 }
 
 void NbvPlannerServer::act(const ExplorerDecision& d) {
@@ -317,6 +322,15 @@ void NbvPlannerServer::writeReport() const {
   json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
   json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
+  std::vector<double> walls = decision_wall_s_;
+  std::sort(walls.begin(), walls.end());
+  double wall_total = 0.0;
+  for (double w : walls) wall_total += w;
+  json.value("decisions", walls.size()).value("decision_wall_s_total", wall_total);
+  json.value("decision_wall_s_median", walls.empty() ? 0.0 : walls[walls.size() / 2]);
+  json.value("decision_wall_s_p90", walls.empty() ? 0.0 : walls[walls.size() * 9 / 10]);
+  json.value("decision_wall_s_max", walls.empty() ? 0.0 : walls.back());
+  json.value("leg_end_wait_s", leg_end_wait_s_);
   json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
   json.value("blacklisted", explorer_.blacklist().size()).endObject();
   const std::string path = config_.report_directory + "/mission_report.json";
