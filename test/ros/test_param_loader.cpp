@@ -227,7 +227,7 @@ TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
 }
 
 // The node caps a decision's leg attempts at 5 wall seconds unless the
-// mission section or a private parameter says otherwise (nbv_mission: none);
+// mission section or a private parameter says otherwise (nbv_mission: none):
 // a negative budget stops the node naming the key.
 TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
   const auto load = [](const std::string& base, PlannerNodeConfig* config) {
