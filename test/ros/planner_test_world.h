@@ -7,11 +7,15 @@
 #include <string>
 #include <vector>
 
+#include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
 #include "surface_nbv/FrontierViewpoint.h"
+#include "surface_nbv/TsdfUpdate.h"
+#include "surface_nbv/map/map_update.h"
 #include "surface_nbv/map/tsdf_map.h"
+#include "surface_nbv/ros/map_conversions.h"
 
 namespace surface_nbv {
 namespace planner_test {
@@ -56,6 +60,48 @@ inline bool call(const std::string& name, std::string* message) {
   if (!ros::service::call(name, t)) return false;
   *message = t.response.message;
   return t.response.success;
+}
+
+// Stands in for tsdf_mapper: `map` whole, latched on tsdf/update, and again
+// on every tsdf_mapper/request_snapshot. ok() is false if the map could not
+// be packed.
+class MapServer {
+ public:
+  MapServer(ros::NodeHandle& nh, const TsdfMap& map) {
+    MapUpdate update;
+    ok_ = makeUpdate(map, 0, 1, true, &update).ok();
+    std_msgs::Header header;
+    header.frame_id = "world";
+    header.stamp = ros::Time::now();
+    toUpdateMsg(update, header, &msg_);
+    pub_ = nh.advertise<TsdfUpdate>("tsdf/update", 1, true);
+    snapshot_ = nh.advertiseService("tsdf_mapper/request_snapshot", &MapServer::onSnapshot, this);
+    pub_.publish(msg_);
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  bool onSnapshot(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+    pub_.publish(msg_);
+    res.success = true;
+    return true;
+  }
+  bool ok_ = false;
+  TsdfUpdate msg_;
+  ros::Publisher pub_;
+  ros::ServiceServer snapshot_;
+};
+
+// Odometry of a UAV hovering at `p`, yaw 0, in world (stamp it before use).
+inline nav_msgs::Odometry hoverOdometry(const Eigen::Vector3d& p) {
+  nav_msgs::Odometry odometry;
+  odometry.header.frame_id = "world";
+  odometry.child_frame_id = "base_link";
+  odometry.pose.pose.position.x = p.x();
+  odometry.pose.pose.position.y = p.y();
+  odometry.pose.pose.position.z = p.z();
+  odometry.pose.pose.orientation.w = 1.0;
+  return odometry;
 }
 
 }  // namespace planner_test

@@ -56,21 +56,8 @@ TEST(NbvPlannerBusy, OdometryThatQueuedWhileThePlannerWorkedIsNotStale) {
   ros::NodeHandle nh;
   TsdfMap map(mapConfig());
   buildWorld(&map, false);
-  MapUpdate update;
-  ASSERT_TRUE(makeUpdate(map, 0, 1, true, &update));
-  std_msgs::Header header;
-  header.frame_id = "world";
-  header.stamp = ros::Time::now();
-  TsdfUpdate update_msg;
-  toUpdateMsg(update, header, &update_msg);
-  ros::Publisher update_pub = nh.advertise<TsdfUpdate>("tsdf/update", 1, true);
-  ros::ServiceServer snapshot = nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
-      "tsdf_mapper/request_snapshot", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-        update_pub.publish(update_msg);
-        res.success = true;
-        return true;
-      });
-  update_pub.publish(update_msg);
+  MapServer map_server(nh, map);
+  ASSERT_TRUE(map_server.ok());
 
   std::mutex mutex;
   size_t budget_holds = 0, stale_holds = 0, statuses = 0;
@@ -89,13 +76,7 @@ TEST(NbvPlannerBusy, OdometryThatQueuedWhileThePlannerWorkedIsNotStale) {
   spinner.start();
   ASSERT_TRUE(ros::service::waitForService("nbv_planner/start", ros::Duration(20.0)));
 
-  nav_msgs::Odometry odometry;
-  odometry.header.frame_id = "world";
-  odometry.child_frame_id = "base_link";
-  odometry.pose.pose.position.x = -4.0;
-  odometry.pose.pose.position.y = -3.0;
-  odometry.pose.pose.position.z = 2.5;
-  odometry.pose.pose.orientation.w = 1.0;
+  nav_msgs::Odometry odometry = hoverOdometry(Eigen::Vector3d(-4.0, -3.0, 2.5));
   std::string message;
   // 20 Hz odometry throughout; a new frontier every second starts a decision
   // whenever the node is free. Three budget holds take about 8 s.

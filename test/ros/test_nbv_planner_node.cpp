@@ -82,23 +82,10 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
           ++holds;
         }
       });
-  MapUpdate update;
-  ASSERT_TRUE(makeUpdate(map, 0, 1, true, &update));
-  std_msgs::Header header;
-  header.frame_id = "world";
-  header.stamp = ros::Time::now();
-  TsdfUpdate update_msg;
-  toUpdateMsg(update, header, &update_msg);
-  ros::Publisher update_pub = nh.advertise<TsdfUpdate>("tsdf/update", 1, true);
+  MapServer map_server(nh, map);
+  ASSERT_TRUE(map_server.ok());
   ros::Publisher frontier_pub = nh.advertise<SurfaceFrontier>("surface/frontier", 1, true);
   ros::Publisher odometry_pub = nh.advertise<nav_msgs::Odometry>("odometry", 10);
-  ros::ServiceServer snapshot = nh.advertiseService<std_srvs::Trigger::Request, std_srvs::Trigger::Response>(
-      "tsdf_mapper/request_snapshot", [&](std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-        update_pub.publish(update_msg);
-        res.success = true;
-        return true;
-      });
-  update_pub.publish(update_msg);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   ASSERT_TRUE(ros::service::waitForService("nbv_planner/start", ros::Duration(20.0)));
@@ -107,13 +94,7 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
   EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;   // stopped already
   EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;  // while stopped
   frontier_pub.publish(makeFrontier());
-  nav_msgs::Odometry odometry;
-  odometry.header.frame_id = "world";
-  odometry.child_frame_id = "base_link";
-  odometry.pose.pose.position.x = uav.x();
-  odometry.pose.pose.position.y = uav.y();
-  odometry.pose.pose.position.z = uav.z();
-  odometry.pose.pose.orientation.w = 1.0;
+  nav_msgs::Odometry odometry = hoverOdometry(uav);
   auto publishOdometry = [&] {
     odometry.header.stamp = ros::Time::now();
     odometry_pub.publish(odometry);
