@@ -336,6 +336,10 @@ void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
   ++stats_.promoted;
 }
 
+void Explorer::startLegBudget(std::chrono::steady_clock::time_point t0) {
+  leg_deadline_ = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.leg_time_budget));
+}
+
 void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
   const auto t0 = Clock::now();
   Eigen::Vector4d from = uav;
@@ -468,7 +472,7 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
 
 ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4d& uav, bool leg_finished) {
   const auto t0 = Clock::now();
-  leg_deadline_ = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.leg_time_budget));
+  startLegBudget(t0);
   ExplorerDecision d;
   if (leg_finished && have_target_ && !tour_.empty()) {
     const Eigen::Vector4d target = tour_.front();
@@ -580,7 +584,7 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
 
 ExplorerDecision Explorer::checkPath(const Eigen::Vector4d& uav) {
   const auto t0 = Clock::now();
-  leg_deadline_ = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config_.leg_time_budget));
+  startLegBudget(t0);
   ExplorerDecision d;
   if (have_target_ && pathBlocked(uav)) {
     ++stats_.paths_blocked;

@@ -214,8 +214,8 @@ void NbvPlannerServer::tick() {
     if (have_leg_ && feed_.refresh() != MapFeed::Refresh::kUnchanged) {
       explorer_.mapChanged();
       const ExplorerDecision d = explorer_.checkPath(uav_);
-      busy_until_ = ros::Time::now();
       if (d.action != ExplorerAction::kContinue) act(d);
+      busy_until_ = ros::Time::now();
     }
     return;
   }
@@ -223,10 +223,10 @@ void NbvPlannerServer::tick() {
   const ros::WallTime wall0 = ros::WallTime::now();
   if (feed_.refresh() != MapFeed::Refresh::kUnchanged) explorer_.mapChanged();
   const ExplorerDecision d = explorer_.update(frontier_, uav_, leg_ended && explorer_.hasTarget());
-  busy_until_ = ros::Time::now();
   if (leg_ended) have_leg_ = false;
   stats_.recordMs(d.timings.total_ms);
   act(d);
+  busy_until_ = ros::Time::now();  // after the markers too (the roadmap's edges take time)
   // What the decisions cost the flight: wall time, and the flight seconds
   // the UAV hovered at a leg's end until its next leg came.
   decision_wall_s_.push_back((ros::WallTime::now() - wall0).toSec());
@@ -253,7 +253,6 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
     }
     case ExplorerAction::kHover:
       hold(d.message);
-      busy_until_ = ros::Time::now();
       return;
     case ExplorerAction::kDone:
       finish();
@@ -261,7 +260,6 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
   }
   publishStatus();
   publishMarkers();
-  busy_until_ = ros::Time::now();  // the markers (the roadmap's edges) take time too
 }
 
 bool NbvPlannerServer::cancelLeg() {

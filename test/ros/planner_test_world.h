@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nav_msgs/Odometry.h>
@@ -12,6 +13,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "surface_nbv/FrontierViewpoint.h"
+#include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/TsdfUpdate.h"
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/map/tsdf_map.h"
@@ -53,6 +55,31 @@ inline FrontierViewpoint viewpoint(double x, double y, double z, double yaw, std
   v.visible_ises = visible;
   v.unknown_fraction = 1.0;  // faces unseen space: never held back by pool_unknown_below
   return v;
+}
+
+// A frontier in world, stamped now: `ises` all in C_ins, `viewpoints`, and
+// clusters as (viewpoint indices, gain).
+inline SurfaceFrontier frontierOf(const std::vector<Eigen::Vector3d>& ises, std::vector<FrontierViewpoint> viewpoints,
+                                  const std::vector<std::pair<std::vector<uint32_t>, double>>& clusters) {
+  SurfaceFrontier f;
+  f.header.frame_id = "world";
+  f.header.stamp = ros::Time::now();
+  for (const Eigen::Vector3d& p : ises) {
+    geometry_msgs::Point point;
+    point.x = p.x();
+    point.y = p.y();
+    point.z = p.z();
+    f.ises.push_back(point);
+  }
+  f.viewpoints = std::move(viewpoints);
+  for (const auto& [members, gain] : clusters) {
+    FrontierCluster c;
+    c.viewpoints = members;
+    c.gain = gain;
+    f.clusters.push_back(c);
+  }
+  f.num_ises = static_cast<uint32_t>(f.ises.size());
+  return f;
 }
 
 inline bool call(const std::string& name, std::string* message) {

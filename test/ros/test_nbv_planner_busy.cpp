@@ -29,25 +29,9 @@ namespace {
 
 // Two clusters, both behind the closed wall from the UAV at (-4, -3, 2.5).
 SurfaceFrontier frontierBehindTheWall() {
-  SurfaceFrontier f;
-  f.header.frame_id = "world";
-  f.header.stamp = ros::Time::now();
-  for (double y : {-3.0, 3.0}) {
-    geometry_msgs::Point p;
-    p.x = 0.375;
-    p.y = y;
-    p.z = 2.5;
-    f.ises.push_back(p);
-  }
-  f.viewpoints = {viewpoint(2.5, -3.0, 2.5, M_PI, {0}), viewpoint(2.5, 3.0, 2.5, M_PI, {1})};
-  FrontierCluster a, b;
-  a.viewpoints = {0};
-  a.gain = 0.5;
-  b.viewpoints = {1};
-  b.gain = 0.5;
-  f.clusters = {a, b};
-  f.num_ises = static_cast<uint32_t>(f.ises.size());
-  return f;
+  return frontierOf({{0.375, -3.0, 2.5}, {0.375, 3.0, 2.5}},
+                    {viewpoint(2.5, -3.0, 2.5, M_PI, {0}), viewpoint(2.5, 3.0, 2.5, M_PI, {1})},
+                    {{{0}, 0.5}, {{1}, 0.5}});
 }
 
 }  // namespace

@@ -30,31 +30,12 @@ using namespace surface_nbv::planner_test;
 namespace {
 
 SurfaceFrontier makeFrontier() {
-  SurfaceFrontier f;
-  f.header.frame_id = "world";
-  f.header.stamp = ros::Time::now();
-  for (double y : {-3.0, -1.0, 1.0}) {
-    geometry_msgs::Point p;
-    p.x = -0.375;
-    p.y = y;
-    p.z = 2.5;
-    f.ises.push_back(p);
-    p.x = 0.375;
-    f.ises.push_back(p);
-  }
-  f.viewpoints = {viewpoint(-2.5, -2.0, 2.5, 0.0, {0, 2}), viewpoint(-2.5, 0.0, 2.5, 0.0, {2, 4}),
-                  viewpoint(2.5, -3.0, 2.5, M_PI, {1}), viewpoint(2.5, -1.0, 2.5, M_PI, {3}),
-                  viewpoint(3.0, 3.5, 2.5, -M_PI / 2, {5})};
-  FrontierCluster a, b, c;
-  a.viewpoints = {0, 1};
-  a.gain = 0.5;
-  b.viewpoints = {2, 3};
-  b.gain = 1.0 / 3.0;
-  c.viewpoints = {4};
-  c.gain = 1.0 / 6.0;
-  f.clusters = {a, b, c};
-  f.num_ises = static_cast<uint32_t>(f.ises.size());
-  return f;
+  return frontierOf({{-0.375, -3, 2.5}, {0.375, -3, 2.5}, {-0.375, -1, 2.5}, {0.375, -1, 2.5}, {-0.375, 1, 2.5},
+                     {0.375, 1, 2.5}},
+                    {viewpoint(-2.5, -2.0, 2.5, 0.0, {0, 2}), viewpoint(-2.5, 0.0, 2.5, 0.0, {2, 4}),
+                     viewpoint(2.5, -3.0, 2.5, M_PI, {1}), viewpoint(2.5, -1.0, 2.5, M_PI, {3}),
+                     viewpoint(3.0, 3.5, 2.5, -M_PI / 2, {5})},
+                    {{{0, 1}, 0.5}, {{2, 3}, 1.0 / 3.0}, {{4}, 1.0 / 6.0}});
 }
 
 }  // namespace

@@ -229,6 +229,8 @@ class Explorer {
   Frontier plannable(const Frontier& frontier);
   bool fullRecompute(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
   bool localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav, ExplorerDecision* d);
+  // A decision starts at t0: its leg attempts may run until t0 + leg_time_budget.
+  void startLegBudget(std::chrono::steady_clock::time_point t0);
   bool pathBlocked(const Eigen::Vector4d& uav) const;
   // The point nearest p (within `within`) clear of the radius plus a cell,
   // written into q's first three coordinates.

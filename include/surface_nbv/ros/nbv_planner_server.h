@@ -102,7 +102,7 @@ class NbvPlannerServer {
   ros::Time odometry_time_, mission_start_;
   std::vector<double> decision_wall_s_;  // wall time of each decision on a frontier (report)
   double leg_end_wait_s_ = 0.0;           // flight s hovered at leg ends while the next leg was decided
-  ros::Time busy_until_;             // ROS time the last decision returned (stale checks wait a timeout past it)
+  ros::Time busy_until_;             // ROS time the last decision and its messages were done (stale checks wait a timeout past it)
   bool have_mission_start_ = false;  // mission_start_ is the mission's first odometry stamp
   double path_length_ = 0.0;
   bool spun_ = false;              // the take-off spin was sent
