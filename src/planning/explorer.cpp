@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <unordered_map>
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/util/angles.h"
+#include "surface_nbv/util/point_hash.h"
 
 namespace surface_nbv {
 namespace {
@@ -18,36 +18,6 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
-
-// Points hashed into cubes of `cell` metres, for "is any point within r" queries (r <= cell).
-class PointHash {
- public:
-  explicit PointHash(double cell) : cell_(cell) {}
-  void add(const Eigen::Vector3d& p, int id) { cells_[key(cellOf(p))].push_back({p, id}); }
-  // Calls f(id) for every point within r of p, stops when f returns true; true if one did.
-  template <typename F>
-  bool any(const Eigen::Vector3d& p, double r, F f) const {
-    const Eigen::Vector3i c = cellOf(p);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (const auto& e : it->second)
-            if ((e.first - p).norm() <= r && f(e.second)) return true;
-        }
-    return false;
-  }
-
- private:
-  Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
-  static int64_t key(const Eigen::Vector3i& c) {
-    return (static_cast<int64_t>(c.x()) * 73856093) ^ (static_cast<int64_t>(c.y()) * 19349663) ^
-           (static_cast<int64_t>(c.z()) * 83492791);
-  }
-  double cell_;
-  std::unordered_map<int64_t, std::vector<std::pair<Eigen::Vector3d, int>>> cells_;
-};
 
 // Frontier viewpoints worth visiting: in a cluster of positive gain.
 bool wanted(const Frontier& f, size_t i) {

@@ -13,7 +13,7 @@ Status ExtractorConfig::validate() const {
   if (Status s = collision.validate(); !s) return s;
   if (world_frame.empty()) return Status::Error("world_frame expected a frame name");
   if (!std::isfinite(rate) || rate <= 0.0 || rate > 50.0) return Status::Error("rate expected in (0, 50] Hz");
-  if (snapshot_service.empty()) return Status::Error("snapshot_service expected a service name");
+  if (Status s = feed.validate(); !s) return s;
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   return Status::Ok();
 }
@@ -36,7 +36,7 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   reader.get("world_frame", &c->world_frame);
   reader.get("rate", &c->rate);
-  reader.get("snapshot_service", &c->snapshot_service);
+  readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
   reader.checkUnknown();
   if (Status st = reader.status(); !st) return st;

@@ -11,7 +11,7 @@ IseExtractorServer::IseExtractorServer(ros::NodeHandle nh, const ExtractorConfig
     : nh_(nh),
       config_(config),
       stats_(nh_, "surface/stats", "ise_extractor", config.stats_period),
-      feed_(nh_, config.map, config.collision, config.snapshot_service, "ise_extractor", &stats_),
+      feed_(nh_, config.map, config.collision, config.feed, "ise_extractor", &stats_),
       builder_(config.surface) {
   frontier_pub_ = nh_.advertise<surface_nbv::SurfaceFrontier>("surface/frontier", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("surface/markers", 1, true);

@@ -11,6 +11,7 @@
 
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/PlannerStatus.h"
+#include "surface_nbv/planning/leg_start.h"
 #include "surface_nbv/ros/frontier_conversions.h"
 #include "surface_nbv/util/angles.h"
 #include "surface_nbv/util/json_writer.h"
@@ -48,13 +49,17 @@ visualization_msgs::Marker lineStrip(const std_msgs::Header& header, const std::
   return m;
 }
 
+// The UAV this close to the pose a leg was planned from flies it as planned.
+constexpr double kLegStartTolerance = 0.3;  // m
+
 }  // namespace
 
 NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, const PlannerNodeConfig& config)
     : nh_(nh),
       config_(config),
       stats_(nh_, "planner/stats", "nbv_planner", config.stats_period),
-      feed_(nh_, config.map, config.collision, config.snapshot_service, "nbv_planner", &stats_),
+      feed_(nh_, config.map, config.collision, config.feed, "nbv_planner", &stats_),
+      latest_(nh_, "odometry", config.world_frame),
       explorer_(config.explorer, config.path) {
   if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
@@ -169,7 +174,8 @@ void NbvPlannerServer::tick() {
   // not stale: after its own work the node gives its callbacks a timeout's
   // grace to catch up. Without it every decision longer than the timeout
   // (a quarter of a wall second at 4x) held the UAV for stale odometry.
-  const double since_busy = (now - busy_until_).toSec();
+  // The map feed's snapshot requests and snapshots hold the callbacks back too.
+  const double since_busy = (now - std::max(busy_until_, feed_.workedUntil())).toSec();
   if ((now - odometry_time_).toSec() > config_.odometry_timeout && since_busy > config_.odometry_timeout) {
     if (state_ != State::kHovering || reason_ != "odometry_stale") {
       reason_ = "odometry_stale";
@@ -245,6 +251,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
     case ExplorerAction::kFly: {
       std::vector<Eigen::Vector4d> points{uav_};
       points.insert(points.end(), d.path.begin(), d.path.end());
+      startAtTheUav(&points);
       leg_end_ = ros::Time::now() + ros::Duration(publishTrajectory(resamplePath(points, config_.trajectory_spacing)));
       leg_goal_ = points.back();
       have_leg_ = true;
@@ -262,8 +269,23 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
   publishMarkers();
 }
 
+Eigen::Vector4d NbvPlannerServer::currentPose() const {
+  Eigen::Vector4d pose;
+  ros::Time stamp;
+  return latest_.get(&pose, &stamp) && stamp > odometry_time_ ? pose : uav_;
+}
+
+void NbvPlannerServer::startAtTheUav(std::vector<Eigen::Vector4d>* points) {
+  Eigen::Vector4d now;
+  ros::Time stamp;
+  if (config_.leg_restart_reach <= 0.0 || !latest_.get(&now, &stamp) || stamp <= odometry_time_) return;
+  const LegStart start = restartLeg(now, feed_.collision(), explorer_.pathPlanner().clearance(),
+                                    config_.leg_restart_reach, kLegStartTolerance, points);
+  if (start != LegStart::kUnchanged) stats_.count(std::string("leg_start_") + toString(start));
+}
+
 bool NbvPlannerServer::cancelLeg() {
-  if (have_odometry_) publishTrajectory({uav_});
+  if (have_odometry_) publishTrajectory({currentPose()});
   have_leg_ = leg_is_spin_ = false;
   explorer_.legCancelled();
   return have_odometry_;

@@ -30,6 +30,9 @@ Status PlannerNodeConfig::validate() const {
   if (!(leg_yaw_tolerance > 0.0) || leg_yaw_tolerance > M_PI) {
     return Status::Error("leg_yaw_tolerance expected in (0, pi] rad");
   }
+  if (!(leg_restart_reach >= 0.0) || leg_restart_reach > 50.0) {
+    return Status::Error("leg_restart_reach expected in [0, 50] m (0: off)");
+  }
   if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("start_spin expected in [0, 20] rad");
   if (!(leg_settle >= 0.0) || leg_settle > 60.0) return Status::Error("leg_settle expected in [0, 60] s");
   if (!(odometry_timeout > 0.0) || !std::isfinite(odometry_timeout)) return Status::Error("odometry_timeout expected > 0");
@@ -37,7 +40,7 @@ Status PlannerNodeConfig::validate() const {
   if (!(max_flight_time >= 0.0) || !std::isfinite(max_flight_time)) {
     return Status::Error("max_flight_time expected >= 0 s (0: no limit)");
   }
-  if (snapshot_service.empty()) return Status::Error("snapshot_service expected a service name");
+  if (Status s = feed.validate(); !s) return s;
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   return Status::Ok();
 }
@@ -112,6 +115,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("leg_settle", &c->leg_settle);
   reader.get("leg_lookahead", &c->leg_lookahead);
   reader.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
+  reader.get("leg_restart_reach", &c->leg_restart_reach);
   reader.get("odometry_timeout", &c->odometry_timeout);
   reader.get("map_timeout", &c->map_timeout);
   reader.get("max_flight_time", &c->max_flight_time);
@@ -129,7 +133,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   c->path.seed = static_cast<unsigned int>(seed);
   reader.get("collision_max_distance", &c->collision.max_distance);
   reader.get("collision_cell_size", &c->collision.min_cell_size);
-  reader.get("snapshot_service", &c->snapshot_service);
+  readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
   reader.checkUnknown();
   if (Status st = reader.status(); !st) return st;

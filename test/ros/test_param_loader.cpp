@@ -2,8 +2,11 @@
 // bad values and misspelt keys are refused with a message naming the key.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <ros/ros.h>
 
+#include "surface_nbv/ros/extractor_params.h"
 #include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/scripted_flight_server.h"
@@ -256,6 +259,48 @@ TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
   const Status bad = load("/legbudget3", &config);
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
+}
+
+TEST(ParamLoader, MapFeedKeysReachBothMapConsumersAndBadOnesAreRefused) {
+  const auto planner = [](const std::string& base, PlannerNodeConfig* config) {
+    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
+    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
+    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
+  };
+  PlannerNodeConfig config;
+  ASSERT_TRUE(planner("/feed0", &config).ok());
+  EXPECT_EQ(config.feed.update_queue, 100);
+  EXPECT_EQ(config.feed.snapshot_retry, 2.0);
+  EXPECT_EQ(config.leg_restart_reach, 3.0);
+  ros::param::set("/feed1/nbv_planner/update_queue", 7);
+  ros::param::set("/feed1/nbv_planner/snapshot_retry", 0.5);
+  ros::param::set("/feed1/nbv_planner/leg_restart_reach", 0.0);
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(planner("/feed1", &config).ok());
+  EXPECT_EQ(config.feed.update_queue, 7);
+  EXPECT_EQ(config.feed.snapshot_retry, 0.5);
+  EXPECT_EQ(config.leg_restart_reach, 0.0);
+  for (const auto& [key, value, expected] :
+       {std::make_tuple("update_queue", 0.0, "update_queue expected in [1, 10000]"),
+        std::make_tuple("snapshot_retry", 0.0, "snapshot_retry expected > 0"),
+        std::make_tuple("leg_restart_reach", -1.0, "leg_restart_reach expected in [0, 50]")}) {
+    const std::string base = std::string("/feedbad_") + key;
+    if (std::string(key) == "update_queue") {
+      ros::param::set(base + "/nbv_planner/" + key, static_cast<int>(value));
+    } else {
+      ros::param::set(base + "/nbv_planner/" + key, value);
+    }
+    config = PlannerNodeConfig();
+    const Status bad = planner(base, &config);
+    EXPECT_NE(bad.message().find(expected), std::string::npos) << key << ": " << bad.message();
+  }
+
+  ros::param::set("/feed2/nbv/voxel_size", 0.25);
+  ros::param::set("/feed2/ise_extractor/shared_namespace", "/feed2/nbv");
+  ros::param::set("/feed2/ise_extractor/update_queue", 12);
+  ExtractorConfig extractor;
+  ASSERT_TRUE(loadExtractorParams(ros::NodeHandle("/feed2/ise_extractor"), &extractor).ok());
+  EXPECT_EQ(extractor.feed.update_queue, 12);
 }
 
 int main(int argc, char** argv) {

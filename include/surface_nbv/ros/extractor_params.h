@@ -7,6 +7,7 @@
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/surface/surface_config.h"
 
@@ -19,7 +20,7 @@ struct ExtractorConfig {
   CollisionConfig collision;
   std::string world_frame = "world";
   double rate = 1.0;              // Hz: frontier updates while the map changes
-  std::string snapshot_service = "tsdf_mapper/request_snapshot";
+  MapFeedConfig feed;             // snapshot_service, update_queue, snapshot_retry (map_feed.h)
   double stats_period = 1.0;
 
   Status validate() const;

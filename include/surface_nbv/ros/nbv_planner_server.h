@@ -42,6 +42,7 @@
 
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/ros/latest_odometry.h"
 #include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
@@ -78,6 +79,10 @@ class NbvPlannerServer {
   double flightTime() const;
   // Publishes the points as a trajectory from now; returns its duration [s].
   double publishTrajectory(const std::vector<Eigen::Vector4d>& points);
+  // The newest odometry pose: latest_'s when it is newer than uav_.
+  Eigen::Vector4d currentPose() const;
+  // A leg decided from uav_ starts where the UAV is now (restartLeg, leg_restart_reach).
+  void startAtTheUav(std::vector<Eigen::Vector4d>* points);
   void publishStatus();
   void publishMarkers();
   void writeReport() const;
@@ -87,6 +92,7 @@ class NbvPlannerServer {
   PlannerNodeConfig config_;
   StatsReporter stats_;
   MapFeed feed_;
+  LatestOdometry latest_;
   Explorer explorer_;
   ros::Subscriber frontier_sub_, odometry_sub_;
   ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;

@@ -12,6 +12,7 @@
 #include "surface_nbv/planning/cluster_graph.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/param_reader.h"
 
 namespace surface_nbv {
@@ -52,6 +53,13 @@ struct PlannerNodeConfig {
   // mission/leg_lookahead). 0: only by leg_settle.
   double leg_lookahead = 0.0;     // s
   double leg_yaw_tolerance = 0.35;  // rad
+  // A leg decided while the UAV flew on starts where the UAV is when it is
+  // sent (newest odometry, latest_odometry.h), joined straight to the
+  // farthest point of its first leg_restart_reach metres that keeps the
+  // planner's clearance (planning/leg_start.h). Decisions of a wall second
+  // at 4x left the UAV over 2 m from the leg's first point and the tracker
+  // refused the leg. 0: off (the leg starts where the decision began).
+  double leg_restart_reach = 3.0;  // m
   double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
   double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
   // s of flight (odometry time since the mission started) after which the
@@ -62,7 +70,7 @@ struct PlannerNodeConfig {
   bool exit_when_done = false;    // shut the node down once DONE (with required="true" the launch ends)
   std::string save_map_service;   // called with "mission.tsdf" when DONE; empty = not called
   std::string export_mesh_service;  // called with "mission.ply" when DONE; empty = not called
-  std::string snapshot_service = "tsdf_mapper/request_snapshot";
+  MapFeedConfig feed;             // snapshot_service, update_queue, snapshot_retry (map_feed.h)
   double stats_period = 1.0;
 
   // Names the first bad key, e.g. "speed expected in (0, 20] m/s".
