@@ -207,6 +207,14 @@ void NbvPlannerServer::tick() {
       return;
     }
   }
+  if (have_leg_ && !leg_is_spin_ && offTrack(now)) {
+    stats_.count("legs_off_track");
+    ROS_WARN_THROTTLE(5.0, "nbv_planner: the UAV stayed %.1f m from its trajectory for %.1f s (a tracker that refused "
+                      "it?): planning the leg again from where it is", trackingError(now), config_.off_track_time);
+    have_leg_ = false;
+    explorer_.legCancelled();
+    frontier_new_ = true;  // decide now
+  }
   const bool at_goal = config_.leg_lookahead > 0.0 && !leg_is_spin_ &&
                        now + ros::Duration(config_.leg_lookahead) >= leg_end_ &&
                        (uav_.head<3>() - leg_goal_.head<3>()).norm() <= config_.explorer.reach_tolerance &&
@@ -402,7 +410,37 @@ double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& p
   }
   trajectory_pub_.publish(trajectory);
   path_pub_.publish(path);
+  sent_.clear();
+  for (size_t i = 0; i < points.size(); ++i) {
+    sent_.emplace_back(trajectory.points[i].time_from_start.toSec(), points[i].head<3>());
+  }
+  sent_at_ = trajectory.header.stamp;
+  off_track_ = false;
   return t;
+}
+
+double NbvPlannerServer::trackingError(const ros::Time& now) const {
+  if (sent_.empty()) return 0.0;
+  const double t = (now - sent_at_).toSec();
+  Eigen::Vector3d reference = sent_.back().second;
+  for (size_t i = 1; i < sent_.size(); ++i) {
+    if (t >= sent_[i].first) continue;
+    const double t0 = sent_[i - 1].first, t1 = sent_[i].first;
+    const double f = t <= t0 ? 0.0 : (t - t0) / std::max(t1 - t0, 1e-9);
+    reference = sent_[i - 1].second + f * (sent_[i].second - sent_[i - 1].second);
+    break;
+  }
+  return (currentPose().head<3>() - reference).norm();
+}
+
+bool NbvPlannerServer::offTrack(const ros::Time& now) {
+  if (config_.max_tracking_error <= 0.0 || trackingError(now) <= config_.max_tracking_error) {
+    off_track_ = false;
+    return false;
+  }
+  if (!off_track_) off_track_since_ = now;
+  off_track_ = true;
+  return (now - off_track_since_).toSec() >= config_.off_track_time;
 }
 
 void NbvPlannerServer::publishStatus() {

@@ -33,6 +33,10 @@ Status PlannerNodeConfig::validate() const {
   if (!(leg_restart_reach >= 0.0) || leg_restart_reach > 50.0) {
     return Status::Error("leg_restart_reach expected in [0, 50] m (0: off)");
   }
+  if (!(max_tracking_error >= 0.0) || !std::isfinite(max_tracking_error)) {
+    return Status::Error("max_tracking_error expected >= 0 m (0: off)");
+  }
+  if (!(off_track_time > 0.0) || !std::isfinite(off_track_time)) return Status::Error("off_track_time expected > 0 s");
   if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("start_spin expected in [0, 20] rad");
   if (!(leg_settle >= 0.0) || leg_settle > 60.0) return Status::Error("leg_settle expected in [0, 60] s");
   if (!(odometry_timeout > 0.0) || !std::isfinite(odometry_timeout)) return Status::Error("odometry_timeout expected > 0");
@@ -116,6 +120,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("leg_lookahead", &c->leg_lookahead);
   reader.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   reader.get("leg_restart_reach", &c->leg_restart_reach);
+  reader.get("max_tracking_error", &c->max_tracking_error);
+  reader.get("off_track_time", &c->off_track_time);
   reader.get("odometry_timeout", &c->odometry_timeout);
   reader.get("map_timeout", &c->map_timeout);
   reader.get("max_flight_time", &c->max_flight_time);

@@ -261,7 +261,7 @@ TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
   EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
 }
 
-TEST(ParamLoader, MapFeedKeysReachBothMapConsumersAndBadOnesAreRefused) {
+TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
   const auto planner = [](const std::string& base, PlannerNodeConfig* config) {
     ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
     ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
@@ -272,6 +272,7 @@ TEST(ParamLoader, MapFeedKeysReachBothMapConsumersAndBadOnesAreRefused) {
   EXPECT_EQ(config.feed.update_queue, 100);
   EXPECT_EQ(config.feed.snapshot_retry, 2.0);
   EXPECT_EQ(config.leg_restart_reach, 3.0);
+  EXPECT_EQ(config.max_tracking_error, 3.0);
   ros::param::set("/feed1/nbv_planner/update_queue", 7);
   ros::param::set("/feed1/nbv_planner/snapshot_retry", 0.5);
   ros::param::set("/feed1/nbv_planner/leg_restart_reach", 0.0);
@@ -283,7 +284,9 @@ TEST(ParamLoader, MapFeedKeysReachBothMapConsumersAndBadOnesAreRefused) {
   for (const auto& [key, value, expected] :
        {std::make_tuple("update_queue", 0.0, "update_queue expected in [1, 10000]"),
         std::make_tuple("snapshot_retry", 0.0, "snapshot_retry expected > 0"),
-        std::make_tuple("leg_restart_reach", -1.0, "leg_restart_reach expected in [0, 50]")}) {
+        std::make_tuple("leg_restart_reach", -1.0, "leg_restart_reach expected in [0, 50]"),
+        std::make_tuple("max_tracking_error", -1.0, "max_tracking_error expected >= 0"),
+        std::make_tuple("off_track_time", 0.0, "off_track_time expected > 0")}) {
     const std::string base = std::string("/feedbad_") + key;
     if (std::string(key) == "update_queue") {
       ros::param::set(base + "/nbv_planner/" + key, static_cast<int>(value));

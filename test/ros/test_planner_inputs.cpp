@@ -5,7 +5,11 @@
 //    kept the node too busy to keep up), and again after snapshot_retry;
 //  - LatestOdometry keeps the newest pose on a thread of its own while the
 //    node's own callbacks wait (what the planner starts a leg from when the
-//    leg is sent after a long decision).
+//    leg is sent after a long decision);
+//  - a leg the UAV does not follow (odometry that stays put, as under a
+//    tracker that refused the trajectory) is planned again from where the UAV
+//    is after off_track_time, without a failure, instead of after the leg's
+//    whole duration with one.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,11 +18,13 @@
 #include <string>
 
 #include <nav_msgs/Odometry.h>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
 #include "surface_nbv/NodeStats.h"
+#include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/TsdfUpdate.h"
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/ros/latest_odometry.h"
@@ -179,6 +185,64 @@ TEST(PlannerInputs, LatestOdometryKeepsTheNewestValidPoseWhileTheNodeIsBusy) {
   EXPECT_DOUBLE_EQ(pose.y(), 2.0);
   EXPECT_DOUBLE_EQ(pose.z(), 3.0);
   EXPECT_EQ(stamp, ros::Time(105.0));
+}
+
+TEST(PlannerInputs, ALegTheUavDoesNotFollowIsPlannedAgainFromWhereItIs) {
+  ros::NodeHandle nh;
+  CountingMapper mapper(nh);
+  PlannerCounters counters(nh);
+  for (int i = 0; i < 200 && !mapper.connected(); ++i) ros::WallDuration(0.1).sleep();
+  ASSERT_TRUE(mapper.connected());
+  ros::WallDuration(0.5).sleep();
+  const uint64_t applied = counters.get("update_applied");
+  mapper.publish(100, true);
+  ASSERT_TRUE(counters.waitFor("update_applied", applied + 1, 10.0));
+
+  struct Plan {
+    ros::WallTime received;
+    double duration;
+    Eigen::Vector3d first;
+  };
+  std::mutex mutex;
+  std::vector<Plan> plans;
+  uint32_t leg_failures = 0;
+  ros::Subscriber trajectory_sub = nh.subscribe<trajectory_msgs::MultiDOFJointTrajectory>(
+      "planner/trajectory", 10, [&](const trajectory_msgs::MultiDOFJointTrajectoryConstPtr& m) {
+        if (m->points.size() < 2) return;  // a hold
+        const auto& t = m->points.front().transforms.at(0).translation;
+        std::lock_guard<std::mutex> l(mutex);
+        plans.push_back({ros::WallTime::now(), m->points.back().time_from_start.toSec(), Eigen::Vector3d(t.x, t.y, t.z)});
+      });
+  ros::Subscriber status_sub = nh.subscribe<PlannerStatus>("planner/status", 20, [&](const PlannerStatusConstPtr& m) {
+    std::lock_guard<std::mutex> l(mutex);
+    leg_failures = m->leg_failures;
+  });
+  // One viewpoint behind the wall's gap, some 12 m of path away: a leg of about 25 s.
+  ros::Publisher frontier_pub = nh.advertise<SurfaceFrontier>("surface/frontier", 1, true);
+  frontier_pub.publish(frontierOf({{2.5, 4.0, 2.5}}, {viewpoint(4.0, 4.0, 2.5, M_PI, {0})}, {{{0}, 0.5}}));
+  ros::Publisher odometry_pub = nh.advertise<nav_msgs::Odometry>("odometry", 10);
+  const Eigen::Vector3d uav(-4.0, -3.0, 2.5);
+  nav_msgs::Odometry odometry = hoverOdometry(uav);
+  std::string message;
+  // The UAV never moves: 20 Hz odometry at the take-off pose throughout.
+  for (int i = 0; i < 800; ++i) {
+    odometry.header.stamp = ros::Time::now();
+    odometry_pub.publish(odometry);
+    if (i == 10) EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+    ros::WallDuration(0.05).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    if (plans.size() >= 2) break;
+  }
+  EXPECT_TRUE(counters.waitFor("legs_off_track", 1, 5.0));
+  std::lock_guard<std::mutex> l(mutex);
+  ASSERT_GE(plans.size(), 2u) << "the leg nobody flew was not planned again";
+  const double gap = (plans[1].received - plans[0].received).toSec();
+  EXPECT_GT(plans[0].duration, 15.0) << "the test wants a long leg";
+  // 3 m of reference ahead of the UAV at 0.5 m/s, then 2 s off track: about 8 s.
+  EXPECT_LT(gap, plans[0].duration - 5.0) << "planned again only when the leg's time ran out";
+  EXPECT_NEAR((plans[1].first - uav).norm(), 0.0, 0.3) << "the new leg starts where the UAV is";
+  EXPECT_EQ(leg_failures, 0u) << "a leg the UAV did not follow counted against its target";
+  std::printf("first leg %.1f s long, planned again after %.1f s\n", plans[0].duration, gap);
 }
 
 int main(int argc, char** argv) {

@@ -34,6 +34,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nav_msgs/Odometry.h>
@@ -83,6 +84,10 @@ class NbvPlannerServer {
   Eigen::Vector4d currentPose() const;
   // A leg decided from uav_ starts where the UAV is now (restartLeg, leg_restart_reach).
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
+  // Metres from the UAV to the last trajectory's reference point at `now`.
+  double trackingError(const ros::Time& now) const;
+  // The UAV has been farther than max_tracking_error from it for off_track_time.
+  bool offTrack(const ros::Time& now);
   void publishStatus();
   void publishMarkers();
   void writeReport() const;
@@ -115,6 +120,9 @@ class NbvPlannerServer {
   bool have_leg_ = false;          // a trajectory is being flown
   bool leg_is_spin_ = false;
   ros::Time leg_end_;
+  std::vector<std::pair<double, Eigen::Vector3d>> sent_;  // last trajectory: time from its stamp, position
+  ros::Time sent_at_, off_track_since_;
+  bool off_track_ = false;
   Eigen::Vector4d leg_goal_ = Eigen::Vector4d::Zero();  // the leg's last point
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;

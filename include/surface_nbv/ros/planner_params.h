@@ -60,6 +60,14 @@ struct PlannerNodeConfig {
   // at 4x left the UAV over 2 m from the leg's first point and the tracker
   // refused the leg. 0: off (the leg starts where the decision began).
   double leg_restart_reach = 3.0;  // m
+  // A leg the UAV does not follow (farther than max_tracking_error from the
+  // trajectory's reference point for off_track_time, ROS time: a tracker
+  // that refused it, or lost it) is given up without a failure on its target
+  // and planned again at once from where the UAV is; before, the node waited
+  // out the leg's whole duration and then counted its target unreachable.
+  // 0: off.
+  double max_tracking_error = 3.0;  // m
+  double off_track_time = 2.0;      // s
   double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
   double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
   // s of flight (odometry time since the mission started) after which the
