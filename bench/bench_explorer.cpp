@@ -9,6 +9,9 @@
 //   BM_PathQuery       a LazyPRM* query between two connected frontier viewpoints
 //                      on a roadmap kept from earlier queries; arguments:
 //                      shortcutting on/off, and PathPlannerConfig::search
+//   BM_RoadmapEdges    PathPlanner::roadmapEdges(20000), what nbv_planner's
+//                      roadmap marker copies out of OMPL, after N path queries
+//                      between frontier viewpoints (argument N)
 // Counters give the stage split (ms) and the frontier's size; BM_PathQuery
 // also the median query (median_ms) and the roadmap's size.
 //   scripts/bench explorer
@@ -181,6 +184,27 @@ void BM_PathQuery(benchmark::State& state) {
 // roadmap path} x QuerySearch {0 = kFast (our lazy A*), 1 = kOmplSearch
 // (LazyPRM::constructSolution), 2 = kOmplSolve (LazyPRM::solve, the old way)}.
 BENCHMARK(BM_PathQuery)->ArgsProduct({{1, 0}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(200);
+
+void BM_RoadmapEdges(benchmark::State& state) {
+  World& w = world();
+  if (!w.ok) return state.SkipWithError("no power plant frontier");
+  PathPlanner planner(w.config.path);
+  planner.setMap(w.collision.get(), w.config.tsdf.bounds);
+  const std::vector<Eigen::Vector4d> goals = viewpointGoals(w);
+  if (goals.size() < 2) return state.SkipWithError("too few viewpoints");
+  for (int64_t q = 0; q < state.range(0); ++q) {
+    planner.plan(goals[(2 * q) % goals.size()], goals[(7 * q + 3) % goals.size()]);
+  }
+  size_t edges = 0;
+  for (auto _ : state) {
+    const auto e = planner.roadmapEdges(20000);
+    edges = e.size();
+    benchmark::DoNotOptimize(e.data());
+  }
+  state.counters["roadmap"] = planner.roadmapVertices();
+  state.counters["edges"] = static_cast<double>(edges);
+}
+BENCHMARK(BM_RoadmapEdges)->Arg(50)->Arg(300)->Unit(benchmark::kMillisecond)->Iterations(20);
 
 }  // namespace
 

@@ -67,7 +67,9 @@ TEST(NbvPlannerBusy, OdometryThatQueuedWhileThePlannerWorkedIsNotStale) {
   for (int i = 0; i < 600; ++i) {
     odometry.header.stamp = ros::Time::now();
     odometry_pub.publish(odometry);
-    if (i == 10) EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+    if (i == 10) {
+      EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+    }
     if (i >= 10 && i % 20 == 10) frontier_pub.publish(frontierBehindTheWall());
     ros::WallDuration(0.05).sleep();
     std::lock_guard<std::mutex> l(mutex);

@@ -14,6 +14,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/SurfaceFrontier.h"
@@ -61,6 +62,16 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
         } else {
           last_hold = *m;
           ++holds;
+        }
+      });
+  // The markers are built only for a subscriber (this one): the leg and the roadmap.
+  size_t leg_points = 0, roadmap_points = 0;
+  ros::Subscriber markers_sub = nh.subscribe<visualization_msgs::MarkerArray>(
+      "planner/markers", 10, [&](const visualization_msgs::MarkerArrayConstPtr& m) {
+        std::lock_guard<std::mutex> l(mutex);
+        for (const visualization_msgs::Marker& marker : m->markers) {
+          if (marker.ns == "leg") leg_points = std::max(leg_points, marker.points.size());
+          if (marker.ns == "roadmap") roadmap_points = std::max(roadmap_points, marker.points.size());
         }
       });
   MapServer map_server(nh, map);
@@ -118,6 +129,16 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
     EXPECT_LT(to_viewpoint, 1e-6);
     std::printf("trajectory: %zu points, %.1f s, ends at (%.2f, %.2f, %.2f)\n", last_plan.points.size(), previous,
                 last.x, last.y, last.z);
+  }
+  for (int i = 0; i < 40; ++i) {
+    ros::WallDuration(0.05).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    if (leg_points > 1 && roadmap_points > 0) break;
+  }
+  {
+    std::lock_guard<std::mutex> l(mutex);
+    EXPECT_GT(leg_points, 1u) << "planner/markers showed no leg";
+    EXPECT_GT(roadmap_points, 0u) << "planner/markers showed no roadmap";
   }
   EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;  // while running
   EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;

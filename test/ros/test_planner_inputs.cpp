@@ -228,7 +228,9 @@ TEST(PlannerInputs, ALegTheUavDoesNotFollowIsPlannedAgainFromWhereItIs) {
   for (int i = 0; i < 800; ++i) {
     odometry.header.stamp = ros::Time::now();
     odometry_pub.publish(odometry);
-    if (i == 10) EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+    if (i == 10) {
+      EXPECT_TRUE(call("nbv_planner/start", &message)) << message;
+    }
     ros::WallDuration(0.05).sleep();
     std::lock_guard<std::mutex> l(mutex);
     if (plans.size() >= 2) break;

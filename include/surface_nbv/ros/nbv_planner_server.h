@@ -22,8 +22,9 @@
 // message). A respawned planner starts its own clock.
 // planner/status (surface_nbv/PlannerStatus, latched) says the state, the
 // last reason, ISE counts, tour, flown length and stage timings, and
-// planner/markers shows the tour, the current leg, the next target and the
-// blacklisted places.
+// planner/markers shows the tour, the current leg, the next target, the
+// blacklisted places, the tour's cluster-graph arcs and the roadmap (copied
+// at most every 5 wall seconds); it is built only while someone subscribes.
 //
 // Services (std_srvs/Trigger, valid in any state, always answer): ~start
 // (RUNNING; after DONE it starts a new mission on the current map), ~stop
@@ -40,6 +41,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+#include <visualization_msgs/Marker.h>
 
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/planning/explorer.h"
@@ -123,6 +125,8 @@ class NbvPlannerServer {
   std::vector<std::pair<double, Eigen::Vector3d>> sent_;  // last trajectory: time from its stamp, position
   ros::Time sent_at_, off_track_since_;
   bool off_track_ = false;
+  visualization_msgs::Marker roadmap_marker_;  // the roadmap's last copy (publishMarkers)
+  ros::WallTime roadmap_marker_wall_;
   Eigen::Vector4d leg_goal_ = Eigen::Vector4d::Zero();  // the leg's last point
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
