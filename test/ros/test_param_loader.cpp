@@ -196,34 +196,36 @@ TEST(ParamLoader, MapperRefusesBadValues) {
   }
 }
 
+// nbv_planner's parameters under `base` (its shared and mission sections there too).
+static Status loadPlanner(const std::string& base, PlannerNodeConfig* config) {
+  ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
+  ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
+  return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
+}
+
 // The tour objective comes from the YAML's mission section like the other
 // explorer keys, a private parameter overrides it, and an unknown one stops
 // the node naming the key.
 TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
-  const auto load = [](const std::string& base, PlannerNodeConfig* config) {
-    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
-    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
-    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
-  };
   PlannerNodeConfig config;
-  ASSERT_TRUE(load("/objective0", &config).ok());
+  ASSERT_TRUE(loadPlanner("/objective0", &config).ok());
   EXPECT_EQ(config.explorer.graph.objective, TourObjective::kProduct);
 
   ros::param::set("/objective1/mission/tour_objective", std::string("sum"));
   config = PlannerNodeConfig();
-  const Status sum = load("/objective1", &config);
+  const Status sum = loadPlanner("/objective1", &config);
   ASSERT_TRUE(sum.ok()) << sum.message();
   EXPECT_EQ(config.explorer.graph.objective, TourObjective::kSum);
 
   ros::param::set("/objective2/mission/tour_objective", std::string("sum"));
   ros::param::set("/objective2/nbv_planner/tour_objective", std::string("product"));
   config = PlannerNodeConfig();
-  ASSERT_TRUE(load("/objective2", &config).ok());
+  ASSERT_TRUE(loadPlanner("/objective2", &config).ok());
   EXPECT_EQ(config.explorer.graph.objective, TourObjective::kProduct);
 
   ros::param::set("/objective3/mission/tour_objective", std::string("total"));
   config = PlannerNodeConfig();
-  const Status bad = load("/objective3", &config);
+  const Status bad = loadPlanner("/objective3", &config);
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find("/objective3/mission/tour_objective expected 'product' or 'sum'"), std::string::npos)
       << bad.message();
@@ -233,42 +235,32 @@ TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
 // mission section or a private parameter says otherwise (nbv_mission: none):
 // a negative budget stops the node naming the key.
 TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
-  const auto load = [](const std::string& base, PlannerNodeConfig* config) {
-    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
-    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
-    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
-  };
   EXPECT_EQ(ExplorerConfig().leg_time_budget, 0.0);
   PlannerNodeConfig config;
-  ASSERT_TRUE(load("/legbudget0", &config).ok());
+  ASSERT_TRUE(loadPlanner("/legbudget0", &config).ok());
   EXPECT_EQ(config.explorer.leg_time_budget, 5.0);
 
   ros::param::set("/legbudget1/mission/leg_time_budget", 2.5);
   config = PlannerNodeConfig();
-  ASSERT_TRUE(load("/legbudget1", &config).ok());
+  ASSERT_TRUE(loadPlanner("/legbudget1", &config).ok());
   EXPECT_EQ(config.explorer.leg_time_budget, 2.5);
 
   ros::param::set("/legbudget2/mission/leg_time_budget", 2.5);
   ros::param::set("/legbudget2/nbv_planner/leg_time_budget", 0.0);
   config = PlannerNodeConfig();
-  ASSERT_TRUE(load("/legbudget2", &config).ok());
+  ASSERT_TRUE(loadPlanner("/legbudget2", &config).ok());
   EXPECT_EQ(config.explorer.leg_time_budget, 0.0);
 
   ros::param::set("/legbudget3/nbv_planner/leg_time_budget", -1.0);
   config = PlannerNodeConfig();
-  const Status bad = load("/legbudget3", &config);
+  const Status bad = loadPlanner("/legbudget3", &config);
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
 }
 
 TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
-  const auto planner = [](const std::string& base, PlannerNodeConfig* config) {
-    ros::param::set(base + "/nbv_planner/shared_namespace", base + "/nbv");
-    ros::param::set(base + "/nbv_planner/mission_namespace", base + "/mission");
-    return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
-  };
   PlannerNodeConfig config;
-  ASSERT_TRUE(planner("/feed0", &config).ok());
+  ASSERT_TRUE(loadPlanner("/feed0", &config).ok());
   EXPECT_EQ(config.feed.update_queue, 100);
   EXPECT_EQ(config.feed.snapshot_retry, 2.0);
   EXPECT_EQ(config.leg_restart_reach, 3.0);
@@ -277,7 +269,7 @@ TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
   ros::param::set("/feed1/nbv_planner/snapshot_retry", 0.5);
   ros::param::set("/feed1/nbv_planner/leg_restart_reach", 0.0);
   config = PlannerNodeConfig();
-  ASSERT_TRUE(planner("/feed1", &config).ok());
+  ASSERT_TRUE(loadPlanner("/feed1", &config).ok());
   EXPECT_EQ(config.feed.update_queue, 7);
   EXPECT_EQ(config.feed.snapshot_retry, 0.5);
   EXPECT_EQ(config.leg_restart_reach, 0.0);
@@ -294,7 +286,7 @@ TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
       ros::param::set(base + "/nbv_planner/" + key, value);
     }
     config = PlannerNodeConfig();
-    const Status bad = planner(base, &config);
+    const Status bad = loadPlanner(base, &config);
     EXPECT_NE(bad.message().find(expected), std::string::npos) << key << ": " << bad.message();
   }
 

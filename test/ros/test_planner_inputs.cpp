@@ -2,10 +2,10 @@
 //  - its MapFeed asks tsdf_mapper for one snapshot per gap in tsdf/update,
 //    not one per update that arrives after the gap (before: a blocking
 //    service call for each, 116 in one 4x run, and the snapshots they caused
-//    kept the node too busy to keep up), and again after snapshot_retry;
+//    kept the node too busy to keep up), and again after snapshot_retry,
 //  - LatestOdometry keeps the newest pose on a thread of its own while the
 //    node's own callbacks wait (what the planner starts a leg from when the
-//    leg is sent after a long decision);
+//    leg is sent after a long decision),
 //  - a leg the UAV does not follow (odometry that stays put, as under a
 //    tracker that refused the trajectory) is planned again from where the UAV
 //    is after off_track_time, without a failure, instead of after the leg's

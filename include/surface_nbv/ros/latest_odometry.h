@@ -5,8 +5,8 @@
 // subscribes the same topic on a callback queue of its own, served by one
 // AsyncSpinner thread, and keeps the newest valid pose (finite, in
 // `world_frame`) behind a mutex: what the UAV's pose is at the moment the
-// node sends its result. Messages that fail those checks are skipped here;
-// the node's own subscriber counts them.
+// node sends its result. Messages that fail those checks are skipped here,
+// and the node's own subscriber counts them.
 #pragma once
 
 #include <memory>
