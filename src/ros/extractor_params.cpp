@@ -12,6 +12,9 @@ Status ExtractorConfig::validate() const {
   if (Status s = surface.validate(); !s) return s;
   if (Status s = collision.validate(); !s) return s;
   if (world_frame.empty()) return Status::Error("world_frame expected a frame name");
+  if (!std::isfinite(frontier_period) || frontier_period < 0.0) {
+    return Status::Error("frontier_period expected >= 0 s (0: rate per wall second)");
+  }
   if (!std::isfinite(rate) || rate <= 0.0 || rate > 50.0) return Status::Error("rate expected in (0, 50] Hz");
   if (Status s = feed.validate(); !s) return s;
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
@@ -35,6 +38,11 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   reader.get("collision_max_distance", &c->collision.max_distance);
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   reader.get("world_frame", &c->world_frame);
+  reader.get("mission_namespace", &c->mission_namespace);
+  ParamReader mission((ros::NodeHandle(c->mission_namespace)));
+  mission.get("frontier_period", &c->frontier_period);
+  if (Status st = mission.status(); !st) return st;
+  reader.get("frontier_period", &c->frontier_period);  // the node's own value wins
   reader.get("rate", &c->rate);
   readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);

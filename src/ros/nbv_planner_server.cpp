@@ -210,10 +210,11 @@ void NbvPlannerServer::tick() {
       return;
     }
   }
-  if (have_leg_ && !leg_is_spin_ && offTrack(now)) {
+  double tracking_error = 0.0;
+  if (have_leg_ && !leg_is_spin_ && offTrack(now, &tracking_error)) {
     stats_.count("legs_off_track");
     ROS_WARN_THROTTLE(5.0, "nbv_planner: the UAV stayed %.1f m from its trajectory for %.1f s (a tracker that refused "
-                      "it?): planning the leg again from where it is", trackingError(now), config_.off_track_time);
+                      "it?): planning the leg again from where it is", tracking_error, config_.off_track_time);
     have_leg_ = false;
     explorer_.legCancelled();
     frontier_new_ = true;  // decide now
@@ -287,10 +288,9 @@ Eigen::Vector4d NbvPlannerServer::currentPose() const {
 }
 
 void NbvPlannerServer::startAtTheUav(std::vector<Eigen::Vector4d>* points) {
-  Eigen::Vector4d now;
-  ros::Time stamp;
-  if (config_.leg_restart_reach <= 0.0 || !latest_.get(&now, &stamp) || stamp <= odometry_time_) return;
-  const LegStart start = restartLeg(now, feed_.collision(), explorer_.pathPlanner().clearance(),
+  if (config_.leg_restart_reach <= 0.0) return;
+  // Without a newer pose, currentPose() is uav_, the leg's first point: kUnchanged.
+  const LegStart start = restartLeg(currentPose(), feed_.collision(), explorer_.pathPlanner().clearance(),
                                     config_.leg_restart_reach, kLegStartTolerance, points);
   if (start != LegStart::kUnchanged) stats_.count(std::string("leg_start_") + toString(start));
 }
@@ -436,8 +436,9 @@ double NbvPlannerServer::trackingError(const ros::Time& now) const {
   return (currentPose().head<3>() - reference).norm();
 }
 
-bool NbvPlannerServer::offTrack(const ros::Time& now) {
-  if (config_.max_tracking_error <= 0.0 || trackingError(now) <= config_.max_tracking_error) {
+bool NbvPlannerServer::offTrack(const ros::Time& now, double* error) {
+  *error = config_.max_tracking_error > 0.0 ? trackingError(now) : 0.0;
+  if (config_.max_tracking_error <= 0.0 || *error <= config_.max_tracking_error) {
     off_track_ = false;
     return false;
   }

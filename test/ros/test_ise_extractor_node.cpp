@@ -1,9 +1,13 @@
 // The frontier of the plant after a short flight: non-empty, every viewpoint
-// inside the bounds and collision-free (1 m) in the map the test mirrors itself.
+// inside the bounds and collision-free (1 m) in the map the test mirrors
+// itself, and published every mission/frontier_period s of simulated time
+// (the clock runs at 4x).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <mutex>
+#include <vector>
 
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
@@ -27,6 +31,7 @@ TEST(IseExtractor, FrontierViewpointsAreFreeAndInsideTheBounds) {
   std::mutex mutex;
   SurfaceFrontier last;
   size_t frontiers = 0;
+  std::vector<double> arrivals;  // ROS (simulated) time of each frontier
   ros::ServiceClient snapshot = nh.serviceClient<std_srvs::Trigger>("tsdf_mapper/request_snapshot");
   ros::Subscriber update_sub = nh.subscribe<TsdfUpdate>("tsdf/update", 50, [&](const TsdfUpdateConstPtr& msg) {
     MapUpdate update;
@@ -41,6 +46,7 @@ TEST(IseExtractor, FrontierViewpointsAreFreeAndInsideTheBounds) {
     std::lock_guard<std::mutex> l(mutex);
     last = *m;
     ++frontiers;
+    arrivals.push_back(ros::Time::now().toSec());
   });
   ros::AsyncSpinner spinner(2);
   spinner.start();
@@ -55,6 +61,19 @@ TEST(IseExtractor, FrontierViewpointsAreFreeAndInsideTheBounds) {
 
   std::lock_guard<std::mutex> l(mutex);
   ASSERT_GT(frontiers, seen_before) << "no frontier update after the flight";
+  // While the map changes, one frontier per frontier_period of simulated
+  // time (a wall-clock timer at 1 Hz gives one per 4 s here).
+  double period = 0.0;
+  ASSERT_TRUE(ros::param::get("/mission/frontier_period", period));
+  ASSERT_GE(arrivals.size(), 4u);
+  std::vector<double> gaps;
+  for (size_t i = 1; i < arrivals.size(); ++i) gaps.push_back(arrivals[i] - arrivals[i - 1]);
+  std::nth_element(gaps.begin(), gaps.begin() + gaps.size() / 2, gaps.end());
+  const double median_gap = gaps[gaps.size() / 2];
+  std::printf("%zu frontiers, median gap %.2f s of simulated time (frontier_period %.2f s)\n", arrivals.size(),
+              median_gap, period);
+  EXPECT_GT(median_gap, 0.75 * period);
+  EXPECT_LT(median_gap, 1.5 * period);
   ASSERT_TRUE(mirror.synced());
   EXPECT_GT(last.num_ises, 100u);
   EXPECT_EQ(last.ises.size(), last.num_ises);

@@ -298,6 +298,33 @@ TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
   EXPECT_EQ(extractor.feed.update_queue, 12);
 }
 
+TEST(ParamLoader, ExtractorTakesTheMissionFrontierPeriodUnlessItsOwnIsSet) {
+  auto load = [](const std::string& base, ExtractorConfig* c) {
+    ros::param::set(base + "/ise_extractor/shared_namespace", base + "/nbv");
+    ros::param::set(base + "/ise_extractor/mission_namespace", base + "/mission");
+    *c = ExtractorConfig();
+    return loadExtractorParams(ros::NodeHandle(base + "/ise_extractor"), c);
+  };
+  ExtractorConfig c;
+  ASSERT_TRUE(load("/period0", &c).ok());
+  EXPECT_EQ(c.frontier_period, 0.0);  // no mission section: rate per wall second
+  EXPECT_EQ(c.rate, 1.0);
+  ros::param::set("/period1/mission/frontier_period", 2.5);
+  ASSERT_TRUE(load("/period1", &c).ok());
+  EXPECT_EQ(c.frontier_period, 2.5);
+  ros::param::set("/period2/mission/frontier_period", 2.5);
+  ros::param::set("/period2/ise_extractor/frontier_period", 0.0);
+  ASSERT_TRUE(load("/period2", &c).ok());
+  EXPECT_EQ(c.frontier_period, 0.0);
+  ros::param::set("/period3/ise_extractor/frontier_period", -1.0);
+  Status bad = load("/period3", &c);
+  EXPECT_NE(bad.message().find("frontier_period expected >= 0"), std::string::npos) << bad.message();
+  ros::param::set("/period4/mission/frontier_period", std::string("two"));
+  bad = load("/period4", &c);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("frontier_period"), std::string::npos) << bad.message();
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "test_param_loader");

@@ -1,6 +1,7 @@
 // Parameters of ise_extractor. From the shared namespace: voxel_size, w_th,
 // bounds_min, bounds_max, camera/*, delta_pose, d_nu, d_nu_max (Table 1 of the
-// paper, one copy for every node); the rest are the node's own (~).
+// paper, one copy for every node); from the mission namespace the default of
+// frontier_period; the rest are the node's own (~).
 #pragma once
 
 #include <string>
@@ -19,7 +20,13 @@ struct ExtractorConfig {
   SurfaceConfig surface;
   CollisionConfig collision;
   std::string world_frame = "world";
-  double rate = 1.0;              // Hz: frontier updates while the map changes
+  std::string mission_namespace = "/mission";  // frontier_period's default comes from there
+  // s of ROS time (the simulated clock under /use_sim_time) between frontier
+  // updates while the map changes: the headless runner's mission/frontier_period,
+  // so that a mission at any real-time factor gets its frontiers as often per
+  // second of flight. 0: `rate` per wall second instead.
+  double frontier_period = 0.0;
+  double rate = 1.0;              // Hz of wall time, with frontier_period 0
   MapFeedConfig feed;             // snapshot_service, update_queue, snapshot_retry (map_feed.h)
   double stats_period = 1.0;
 

@@ -1,7 +1,8 @@
 // The ise_extractor node: keeps a MapMirror of tsdf/update (asking the
 // mapper for a snapshot on a gap), and while the map changes recomputes the
-// frontier at `rate` (ISEs, viewpoints, visibility, clusters) and publishes
-// surface/frontier, surface/markers and surface/stats.
+// frontier every frontier_period s of ROS time (else at `rate` per wall
+// second): ISEs, viewpoints, visibility, clusters; publishes surface/frontier,
+// surface/markers and surface/stats.
 #pragma once
 
 #include <memory>
@@ -20,7 +21,7 @@ class IseExtractorServer {
   IseExtractorServer(ros::NodeHandle nh, const ExtractorConfig& config);
 
  private:
-  void onTimer(const ros::WallTimerEvent&);
+  void update();
 
   ros::NodeHandle nh_;
   ExtractorConfig config_;
@@ -28,7 +29,8 @@ class IseExtractorServer {
   MapFeed feed_;
   FrontierBuilder builder_;
   ros::Publisher frontier_pub_, markers_pub_;
-  ros::WallTimer timer_;
+  ros::Timer timer_;            // frontier_period > 0 (ROS time)
+  ros::WallTimer wall_timer_;   // else
   uint64_t computed_stamp_ = 0;
 };
 
