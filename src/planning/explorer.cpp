@@ -427,7 +427,9 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
     turn_point << b + (a - b) * (config_.turn_distance / last), headings.back();
     p.insert(p.end() - 1, turn_point);
   } else if (p.size() == 2) {
-    return;  // one short segment: the yaw goes from the start's to the target's
+    // One short segment: the UAV turns to its heading at the start (in place,
+    // unless turn_lead), then to the target's yaw along all of it.
+    return;
   }
   if (config_.turn_lead > 0.0 && start_turn > 0.0) {
     const Eigen::Vector3d s0 = p[0].head<3>(), s1 = p[1].head<3>();
