@@ -15,18 +15,15 @@ IseExtractorServer::IseExtractorServer(ros::NodeHandle nh, const ExtractorConfig
       builder_(config.surface) {
   frontier_pub_ = nh_.advertise<surface_nbv::SurfaceFrontier>("surface/frontier", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("surface/markers", 1, true);
-  if (config_.frontier_period > 0.0) {
-    timer_ = nh_.createTimer(ros::Duration(config_.frontier_period), [this](const ros::TimerEvent&) { update(); });
-  } else {
-    wall_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / config_.rate),
-                                      [this](const ros::WallTimerEvent&) { update(); });
-  }
   ROS_INFO("ise_extractor: voxel %.3f m, delta_pose %.2f m, d_nu %.1f-%.1f m, collision radius %.1f m, %d thread(s)",
            config_.map.voxel_size, config_.surface.delta_pose, config_.surface.d_nu, config_.surface.d_nu_max,
            config_.surface.collision_radius, config_.surface.threads);
   if (config_.frontier_period > 0.0) {
+    timer_ = nh_.createTimer(ros::Duration(config_.frontier_period), [this](const ros::TimerEvent&) { update(); });
     ROS_INFO("ise_extractor: a frontier every %.2f s of ROS time while the map changes", config_.frontier_period);
   } else {
+    wall_timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / config_.rate),
+                                      [this](const ros::WallTimerEvent&) { update(); });
     ROS_INFO("ise_extractor: a frontier at %.2f Hz of wall time while the map changes", config_.rate);
   }
 }

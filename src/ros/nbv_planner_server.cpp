@@ -437,8 +437,9 @@ double NbvPlannerServer::trackingError(const ros::Time& now) const {
 }
 
 bool NbvPlannerServer::offTrack(const ros::Time& now, double* error) {
-  *error = config_.max_tracking_error > 0.0 ? trackingError(now) : 0.0;
-  if (config_.max_tracking_error <= 0.0 || *error <= config_.max_tracking_error) {
+  *error = 0.0;
+  if (config_.max_tracking_error > 0.0) *error = trackingError(now);
+  if (*error <= config_.max_tracking_error || config_.max_tracking_error <= 0.0) {
     off_track_ = false;
     return false;
   }

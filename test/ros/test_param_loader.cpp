@@ -203,6 +203,13 @@ static Status loadPlanner(const std::string& base, PlannerNodeConfig* config) {
   return loadPlannerParams(ros::NodeHandle(base + "/nbv_planner"), config);
 }
 
+// ise_extractor's parameters under `base`, the same way.
+static Status loadExtractor(const std::string& base, ExtractorConfig* config) {
+  ros::param::set(base + "/ise_extractor/shared_namespace", base + "/nbv");
+  ros::param::set(base + "/ise_extractor/mission_namespace", base + "/mission");
+  return loadExtractorParams(ros::NodeHandle(base + "/ise_extractor"), config);
+}
+
 // The tour objective comes from the YAML's mission section like the other
 // explorer keys, a private parameter overrides it, and an unknown one stops
 // the node naming the key.
@@ -291,19 +298,16 @@ TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
   }
 
   ros::param::set("/feed2/nbv/voxel_size", 0.25);
-  ros::param::set("/feed2/ise_extractor/shared_namespace", "/feed2/nbv");
   ros::param::set("/feed2/ise_extractor/update_queue", 12);
   ExtractorConfig extractor;
-  ASSERT_TRUE(loadExtractorParams(ros::NodeHandle("/feed2/ise_extractor"), &extractor).ok());
+  ASSERT_TRUE(loadExtractor("/feed2", &extractor).ok());
   EXPECT_EQ(extractor.feed.update_queue, 12);
 }
 
 TEST(ParamLoader, ExtractorTakesTheMissionFrontierPeriodUnlessItsOwnIsSet) {
-  auto load = [](const std::string& base, ExtractorConfig* c) {
-    ros::param::set(base + "/ise_extractor/shared_namespace", base + "/nbv");
-    ros::param::set(base + "/ise_extractor/mission_namespace", base + "/mission");
+  const auto load = [](const std::string& base, ExtractorConfig* c) {
     *c = ExtractorConfig();
-    return loadExtractorParams(ros::NodeHandle(base + "/ise_extractor"), c);
+    return loadExtractor(base, c);
   };
   ExtractorConfig c;
   ASSERT_TRUE(load("/period0", &c).ok());

@@ -88,8 +88,8 @@ class NbvPlannerServer {
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
   // Metres from the UAV to the last trajectory's reference point at `now`.
   double trackingError(const ros::Time& now) const;
-  // The UAV has been farther than max_tracking_error from it for off_track_time;
-  // `error` is trackingError(now) (0 with the check off).
+  // Whether the UAV has been farther than max_tracking_error from it for
+  // off_track_time. Also gives trackingError(now) in `error`, 0 with the check off.
   bool offTrack(const ros::Time& now, double* error);
   void publishStatus();
   void publishMarkers();
