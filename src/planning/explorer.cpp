@@ -374,6 +374,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       d->path = path_;
       d->target = target;
       ++stats_.legs;
+      if (leg.from_lattice) ++stats_.lattice_legs;
       d->timings.path_ms = msSince(t0);
       return;
     }

@@ -318,6 +318,13 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   const double cap = std::isnan(max_seconds) ? 0.0 : max_seconds;
   if (config_.time_budget <= 0.0 || cap <= 0.0) return finish(PathStatus::kTimeout);
   const double budget_s = std::min(config_.time_budget, cap);
+  // With the lattice on, a caller's cap (the ROS planner's leg_time_budget)
+  // is shared: the roadmap stops at half of it, so that the lattice, which
+  // finds the tight passages sampling misses, still has time when the
+  // roadmap has none to spare (it would otherwise spend the whole cap, as
+  // it does on a loaded machine). Without a cap nothing changes.
+  const double roadmap_s =
+      config_.lattice_step > 0.0 && std::isfinite(cap) ? std::min(budget_s, 0.5 * cap) : budget_s;
 
   auto pdef = std::make_shared<ob::ProblemDefinition>(impl_->si);
   pdef->setStartAndGoalStates(s, g);
@@ -328,7 +335,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   // it once per roadmap sample, so the count does not depend on timing.
   int evaluations = 0;
   const int budget = config_.iteration_budget;
-  ob::PlannerTerminationCondition ptc = ob::timedPlannerTerminationCondition(budget_s);
+  ob::PlannerTerminationCondition ptc = ob::timedPlannerTerminationCondition(roadmap_s);
   if (budget > 0) {
     ptc = ob::plannerOrTerminationCondition(
         ptc, ob::PlannerTerminationCondition([&evaluations, budget] { return ++evaluations > budget; }));
@@ -340,7 +347,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
                                                                                                   : Roadmap::kOmplSearch;
   std::vector<Eigen::Vector3d> raw;
   const ob::PlannerStatus status =
-      impl_->prm->query(ptc, [&elapsed, budget_s] { return elapsed() > budget_s; }, mode, &raw);
+      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw);
   impl_->prm->clearQuery();
 
   PathStatus failure = PathStatus::kExactSolution;

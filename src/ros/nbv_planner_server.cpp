@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <nav_msgs/Path.h>
 #include <filesystem>
@@ -353,6 +354,7 @@ void NbvPlannerServer::writeReport() const {
   json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
   json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
+  json.value("lattice_legs", s.lattice_legs);
   std::vector<double> walls = decision_wall_s_;
   std::sort(walls.begin(), walls.end());
   double wall_total = 0.0;
@@ -502,21 +504,23 @@ void NbvPlannerServer::publishMarkers() {
   markers.markers.push_back(bl);
   // The roadmap (grey) and the tour's cluster-graph arcs, red (low utility f_uv) to green (high).
   // The roadmap is copied out of OMPL whole (bench_explorer BM_RoadmapEdges):
-  // at most every kRoadmapMarkerPeriod wall seconds, the last copy between.
+  // at most every kRoadmapMarkerPeriod wall seconds. rviz keeps a marker until
+  // one of the same namespace and id replaces it, so the arrays between copies
+  // leave it out rather than send up to 40,000 points again.
   const ros::WallTime wall = ros::WallTime::now();
-  if (roadmap_marker_.points.empty() || (wall - roadmap_marker_wall_).toSec() >= kRoadmapMarkerPeriod) {
-    roadmap_marker_ = lineStrip(header, "roadmap", {}, 0.6f, 0.6f, 0.6f);
-    roadmap_marker_.type = visualization_msgs::Marker::LINE_LIST;
-    roadmap_marker_.scale.x = 0.02;
-    roadmap_marker_.color.a = 0.4f;
+  if (roadmap_marker_wall_.isZero() || (wall - roadmap_marker_wall_).toSec() >= kRoadmapMarkerPeriod) {
+    visualization_msgs::Marker roadmap = lineStrip(header, "roadmap", {}, 0.6f, 0.6f, 0.6f);
+    roadmap.type = visualization_msgs::Marker::LINE_LIST;
+    roadmap.scale.x = 0.02;
+    roadmap.color.a = 0.4f;
     for (const auto& [a, b] : explorer_.pathPlanner().roadmapEdges(20000)) {
-      roadmap_marker_.points.push_back(tf2::toMsg(a));
-      roadmap_marker_.points.push_back(tf2::toMsg(b));
+      roadmap.points.push_back(tf2::toMsg(a));
+      roadmap.points.push_back(tf2::toMsg(b));
     }
-    roadmap_marker_wall_ = wall;
+    // An empty roadmap (nothing planned yet) is copied again on the next array.
+    if (!roadmap.points.empty()) roadmap_marker_wall_ = wall;
+    markers.markers.push_back(std::move(roadmap));
   }
-  roadmap_marker_.header = header;
-  markers.markers.push_back(roadmap_marker_);
   visualization_msgs::Marker graph = lineStrip(header, "cluster_graph", {}, 1.0f, 1.0f, 1.0f);
   graph.type = visualization_msgs::Marker::LINE_LIST;
   graph.scale.x = 0.08;

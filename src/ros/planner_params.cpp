@@ -133,6 +133,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("start_running", &c->start_running);
   reader.get("collision_radius", &c->path.collision_radius);
   reader.get("time_budget", &c->path.time_budget);
+  reader.get("lattice_step", &c->path.lattice_step);
   int seed = static_cast<int>(c->path.seed);
   reader.get("seed", &seed);
   if (seed < 0) return Status::Error(priv.getNamespace() + "/seed expected >= 0");

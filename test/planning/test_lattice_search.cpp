@@ -131,6 +131,33 @@ TEST(LatticeSearch, PlannerFallsBackToTheLatticeThroughANarrowSlot) {
   EXPECT_GT(none.lattice_nodes, 0u);
 }
 
+// A caller's cap (the ROS planner's leg_time_budget) on a roadmap bounded by
+// wall time only: the roadmap used to spend all of it, and the lattice never
+// ran. Now it stops at half the cap and the lattice searches in the rest.
+TEST(LatticeSearch, RoadmapLeavesTheLatticeHalfOfACallersCap) {
+  WallWorld world(false);  // no gap: neither search can reach the goal, both run to their limits
+  const Eigen::Vector4d start(-3.5, -3.0, 2.5, 0.0), goal(3.5, -2.8, 2.4, 1.0);
+  PathPlannerConfig config = seededPlannerConfig(3, 0, 30.0);  // no iteration bound
+  config.lattice_step = 0.25;
+  config.lattice_max_nodes = 100000000;  // the wall time stops it, not the node count
+  PathPlanner planner(config);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()).ok());
+  const double cap = 1.0;
+  const PathResult r = planner.plan(start, goal, cap);
+  EXPECT_EQ(r.status, PathStatus::kTimeout) << toString(r.status);
+  EXPECT_FALSE(r.from_lattice);
+  EXPECT_GT(r.lattice_nodes, 0u) << "the roadmap spent the whole cap";
+  EXPECT_LT(r.seconds, cap + 0.5);
+
+  config.lattice_step = 0.0;  // without the lattice the roadmap keeps the whole cap
+  PathPlanner alone(config);
+  ASSERT_TRUE(alone.setMap(&world.collision(), world.bounds()).ok());
+  const PathResult a = alone.plan(start, goal, cap);
+  EXPECT_EQ(a.status, PathStatus::kTimeout) << toString(a.status);
+  EXPECT_EQ(a.lattice_nodes, 0u);
+  EXPECT_GT(a.seconds, 0.9 * cap);
+}
+
 TEST(LatticeSearch, PlannerConfigValidatesTheLatticeKeys) {
   PathPlannerConfig c;
   c.lattice_step = -0.1;

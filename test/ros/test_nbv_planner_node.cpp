@@ -64,16 +64,22 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
           ++holds;
         }
       });
-  // The markers are built only for a subscriber (this one): the leg and the roadmap.
-  size_t leg_points = 0, roadmap_points = 0;
+  // The markers are built only for a subscriber (this one): the leg and the
+  // roadmap, which comes again only after kRoadmapMarkerPeriod (5 s) once it
+  // has edges, so the arrays that follow the first copy within the test leave it out.
+  size_t leg_points = 0, roadmap_points = 0, arrays_after_roadmap = 0, roadmaps_after_roadmap = 0;
   ros::Subscriber markers_sub = nh.subscribe<visualization_msgs::MarkerArray>(
       "planner/markers", 10, [&](const visualization_msgs::MarkerArrayConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
+        if (roadmap_points > 0) ++arrays_after_roadmap;
         for (const visualization_msgs::Marker& marker : m->markers) {
           if (marker.ns == "leg") leg_points = std::max(leg_points, marker.points.size());
-          if (marker.ns == "roadmap") roadmap_points = std::max(roadmap_points, marker.points.size());
+          if (marker.ns != "roadmap") continue;
+          if (roadmap_points > 0) ++roadmaps_after_roadmap;
+          roadmap_points = std::max(roadmap_points, marker.points.size());
         }
       });
+  const ros::WallTime test_start = ros::WallTime::now();
   MapServer map_server(nh, map);
   ASSERT_TRUE(map_server.ok());
   ros::Publisher frontier_pub = nh.advertise<SurfaceFrontier>("surface/frontier", 1, true);
@@ -139,6 +145,20 @@ TEST(NbvPlanner, TrajectoryIsFreeInsideTheBoundsAndTimed) {
     std::lock_guard<std::mutex> l(mutex);
     EXPECT_GT(leg_points, 1u) << "planner/markers showed no leg";
     EXPECT_GT(roadmap_points, 0u) << "planner/markers showed no roadmap";
+  }
+  for (int i = 0; i < 60; ++i) {  // a few more arrays: one per decision, which a new frontier brings
+    if (i % 10 == 0) frontier_pub.publish(makeFrontier());
+    publishOdometry();
+    ros::WallDuration(0.05).sleep();
+    std::lock_guard<std::mutex> l(mutex);
+    if (arrays_after_roadmap >= 2) break;
+  }
+  {
+    std::lock_guard<std::mutex> l(mutex);
+    EXPECT_GE(arrays_after_roadmap, 1u) << "no planner/markers after the roadmap's first copy";
+    if ((ros::WallTime::now() - test_start).toSec() < 5.0) {
+      EXPECT_EQ(roadmaps_after_roadmap, 0u) << "the roadmap was sent again within its 5 s period";
+    }
   }
   EXPECT_TRUE(call("nbv_planner/replan", &message)) << message;  // while running
   EXPECT_TRUE(call("nbv_planner/stop", &message)) << message;

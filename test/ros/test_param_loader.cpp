@@ -265,6 +265,31 @@ TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
   EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
 }
 
+// The lattice fallback: off by default, the mission section's
+// path_lattice_step, the node's own lattice_step over it; negative refused.
+TEST(ParamLoader, PlannerLatticeStepComesFromTheMissionUnlessItsOwnIsSet) {
+  PlannerNodeConfig config;
+  ASSERT_TRUE(loadPlanner("/lattice0", &config).ok());
+  EXPECT_EQ(config.path.lattice_step, 0.0);
+
+  ros::param::set("/lattice1/mission/path_lattice_step", 0.3);
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(loadPlanner("/lattice1", &config).ok());
+  EXPECT_EQ(config.path.lattice_step, 0.3);
+
+  ros::param::set("/lattice2/mission/path_lattice_step", 0.3);
+  ros::param::set("/lattice2/nbv_planner/lattice_step", 0.5);
+  config = PlannerNodeConfig();
+  ASSERT_TRUE(loadPlanner("/lattice2", &config).ok());
+  EXPECT_EQ(config.path.lattice_step, 0.5);
+
+  ros::param::set("/lattice3/nbv_planner/lattice_step", -0.2);
+  config = PlannerNodeConfig();
+  const Status bad = loadPlanner("/lattice3", &config);
+  EXPECT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("lattice_step expected >= 0"), std::string::npos) << bad.message();
+}
+
 TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
   PlannerNodeConfig config;
   ASSERT_TRUE(loadPlanner("/feed0", &config).ok());

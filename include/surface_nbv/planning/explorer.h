@@ -171,6 +171,7 @@ struct ExplorerStats {
   size_t gaze_vertices = 0;     // leg vertices whose yaw the gaze set
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
   size_t budget_stops = 0;      // decisions that spent leg_time_budget before finding a leg
+  size_t lattice_legs = 0;      // legs the path planner's lattice fallback found (path_lattice_step)
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };

@@ -129,6 +129,8 @@ class PathPlanner {
   // `max_seconds` caps this call's wall time below config.time_budget (the
   // roadmap's and the lattice's together): a caller's budget for several
   // calls (ExplorerConfig::leg_time_budget). Past it the answer is kTimeout.
+  // With the lattice on, the roadmap stops at half the cap and leaves the
+  // lattice the rest.
   PathResult plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal,
                   double max_seconds = std::numeric_limits<double>::infinity());
   // Length of plan(start, goal) with yaw 0, or +infinity if it has no path.

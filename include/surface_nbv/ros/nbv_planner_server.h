@@ -126,8 +126,7 @@ class NbvPlannerServer {
   std::vector<std::pair<double, Eigen::Vector3d>> sent_;  // last trajectory: time from its stamp, position
   ros::Time sent_at_, off_track_since_;
   bool off_track_ = false;
-  visualization_msgs::Marker roadmap_marker_;  // the roadmap's last copy (publishMarkers)
-  ros::WallTime roadmap_marker_wall_;
+  ros::WallTime roadmap_marker_wall_;  // when publishMarkers last copied the roadmap (0: never)
   Eigen::Vector4d leg_goal_ = Eigen::Vector4d::Zero();  // the leg's last point
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
