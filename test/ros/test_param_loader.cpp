@@ -265,17 +265,19 @@ TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
   EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
 }
 
-// The lattice fallback: off by default, the mission section's
-// path_lattice_step, the node's own lattice_step over it; negative refused.
+// The lattice fallback: on at 0.3 m in the node (off in nbv_mission), the
+// mission section's path_lattice_step over it, the node's own lattice_step
+// over both; 0 turns it off, negative is refused.
 TEST(ParamLoader, PlannerLatticeStepComesFromTheMissionUnlessItsOwnIsSet) {
+  EXPECT_EQ(PathPlannerConfig().lattice_step, 0.0);
   PlannerNodeConfig config;
   ASSERT_TRUE(loadPlanner("/lattice0", &config).ok());
-  EXPECT_EQ(config.path.lattice_step, 0.0);
+  EXPECT_EQ(config.path.lattice_step, 0.3);
 
-  ros::param::set("/lattice1/mission/path_lattice_step", 0.3);
+  ros::param::set("/lattice1/mission/path_lattice_step", 0.0);
   config = PlannerNodeConfig();
   ASSERT_TRUE(loadPlanner("/lattice1", &config).ok());
-  EXPECT_EQ(config.path.lattice_step, 0.3);
+  EXPECT_EQ(config.path.lattice_step, 0.0);
 
   ros::param::set("/lattice2/mission/path_lattice_step", 0.3);
   ros::param::set("/lattice2/nbv_planner/lattice_step", 0.5);

@@ -33,7 +33,16 @@ struct PlannerNodeConfig {
     e.leg_time_budget = 5.0;
     return e;
   }();
-  PathPlannerConfig path;         // collision_radius, time_budget, seed of the PRM
+  // collision_radius, time_budget, seed of the PRM. The node's lattice
+  // fallback is on (0.3 m; nbv_mission's is off): under leg_time_budget a
+  // roadmap that cannot find the tight passage a target lies behind spent
+  // every decision's budget, one hover after another for up to 190 s of
+  // flight, where the lattice finds it (session 19, docs/mission_history.md).
+  PathPlannerConfig path = [] {
+    PathPlannerConfig p;
+    p.lattice_step = 0.3;
+    return p;
+  }();
   CollisionConfig collision;
   std::string world_frame = "world";
   double replan_rate = 2.0;       // Hz: ticks; a tick decides on a new frontier, an ended leg or ~replan
