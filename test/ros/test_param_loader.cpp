@@ -238,58 +238,54 @@ TEST(ParamLoader, PlannerReadsTheTourObjectiveAndRefusesAnUnknownOne) {
       << bad.message();
 }
 
-// The node caps a decision's leg attempts at 5 wall seconds unless the
-// mission section or a private parameter says otherwise (nbv_mission: none):
-// a negative budget stops the node naming the key.
-TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
-  EXPECT_EQ(ExplorerConfig().leg_time_budget, 0.0);
+// A planner setting in three layers: the node's default, the mission
+// section's key over it, the node's private key over both. A negative value
+// stops the node with a message naming the key.
+struct LayeredKey {
+  const char* mission_key;
+  const char* node_key;
+  double node_default, mission_value, node_value;
+  double (*read)(const PlannerNodeConfig&);
+};
+
+static void expectLayered(const std::string& base, const LayeredKey& k) {
+  SCOPED_TRACE(k.node_key);
   PlannerNodeConfig config;
-  ASSERT_TRUE(loadPlanner("/legbudget0", &config).ok());
-  EXPECT_EQ(config.explorer.leg_time_budget, 5.0);
+  ASSERT_TRUE(loadPlanner(base + "0", &config).ok());
+  EXPECT_EQ(k.read(config), k.node_default);
 
-  ros::param::set("/legbudget1/mission/leg_time_budget", 2.5);
+  ros::param::set(base + "1/mission/" + k.mission_key, k.mission_value);
   config = PlannerNodeConfig();
-  ASSERT_TRUE(loadPlanner("/legbudget1", &config).ok());
-  EXPECT_EQ(config.explorer.leg_time_budget, 2.5);
+  ASSERT_TRUE(loadPlanner(base + "1", &config).ok());
+  EXPECT_EQ(k.read(config), k.mission_value);
 
-  ros::param::set("/legbudget2/mission/leg_time_budget", 2.5);
-  ros::param::set("/legbudget2/nbv_planner/leg_time_budget", 0.0);
+  ros::param::set(base + "2/mission/" + k.mission_key, k.mission_value);
+  ros::param::set(base + "2/nbv_planner/" + k.node_key, k.node_value);
   config = PlannerNodeConfig();
-  ASSERT_TRUE(loadPlanner("/legbudget2", &config).ok());
-  EXPECT_EQ(config.explorer.leg_time_budget, 0.0);
+  ASSERT_TRUE(loadPlanner(base + "2", &config).ok());
+  EXPECT_EQ(k.read(config), k.node_value);
 
-  ros::param::set("/legbudget3/nbv_planner/leg_time_budget", -1.0);
+  ros::param::set(base + "3/nbv_planner/" + k.node_key, -1.0);
   config = PlannerNodeConfig();
-  const Status bad = loadPlanner("/legbudget3", &config);
+  const Status bad = loadPlanner(base + "3", &config);
   EXPECT_FALSE(bad.ok());
-  EXPECT_NE(bad.message().find("leg_time_budget expected >= 0"), std::string::npos) << bad.message();
+  EXPECT_NE(bad.message().find(std::string(k.node_key) + " expected >= 0"), std::string::npos) << bad.message();
 }
 
-// The lattice fallback: on at 0.3 m in the node (off in nbv_mission), the
-// mission section's path_lattice_step over it, the node's own lattice_step
-// over both; 0 turns it off, negative is refused.
+// The node caps a decision's leg attempts at 5 wall seconds (nbv_mission: no
+// cap); 0 turns the cap off.
+TEST(ParamLoader, PlannerCapsLegAttemptsByDefaultAndRefusesANegativeBudget) {
+  EXPECT_EQ(ExplorerConfig().leg_time_budget, 0.0);
+  expectLayered("/legbudget", {"leg_time_budget", "leg_time_budget", 5.0, 2.5, 0.0,
+                               [](const PlannerNodeConfig& c) { return c.explorer.leg_time_budget; }});
+}
+
+// The lattice fallback: on at 0.3 m in the node (off in nbv_mission); 0 turns
+// it off.
 TEST(ParamLoader, PlannerLatticeStepComesFromTheMissionUnlessItsOwnIsSet) {
   EXPECT_EQ(PathPlannerConfig().lattice_step, 0.0);
-  PlannerNodeConfig config;
-  ASSERT_TRUE(loadPlanner("/lattice0", &config).ok());
-  EXPECT_EQ(config.path.lattice_step, 0.3);
-
-  ros::param::set("/lattice1/mission/path_lattice_step", 0.0);
-  config = PlannerNodeConfig();
-  ASSERT_TRUE(loadPlanner("/lattice1", &config).ok());
-  EXPECT_EQ(config.path.lattice_step, 0.0);
-
-  ros::param::set("/lattice2/mission/path_lattice_step", 0.3);
-  ros::param::set("/lattice2/nbv_planner/lattice_step", 0.5);
-  config = PlannerNodeConfig();
-  ASSERT_TRUE(loadPlanner("/lattice2", &config).ok());
-  EXPECT_EQ(config.path.lattice_step, 0.5);
-
-  ros::param::set("/lattice3/nbv_planner/lattice_step", -0.2);
-  config = PlannerNodeConfig();
-  const Status bad = loadPlanner("/lattice3", &config);
-  EXPECT_FALSE(bad.ok());
-  EXPECT_NE(bad.message().find("lattice_step expected >= 0"), std::string::npos) << bad.message();
+  expectLayered("/lattice", {"path_lattice_step", "lattice_step", 0.3, 0.0, 0.5,
+                             [](const PlannerNodeConfig& c) { return c.path.lattice_step; }});
 }
 
 TEST(ParamLoader, MapFeedAndLegTrackingKeysAreReadAndBadOnesAreRefused) {
