@@ -44,8 +44,9 @@ const LoadedScene* getScene(const std::string& name) {
     renderer.render(T_W_C, &depth);
     if (depth.validCount() >= 0.4 * depth.data.size()) loaded->dense_poses.push_back(T_W_C);
   }
-  std::printf("scene %s: %zu triangles, %zu flight poses, %zu dense poses\n", name.c_str(), loaded->mesh.numTriangles(),
-              loaded->poses.size(), loaded->dense_poses.size());
+  std::printf("scene %s: %zu triangles, %zu flight poses, %zu dense poses; native packet %d rays\n", name.c_str(),
+              loaded->mesh.numTriangles(), loaded->poses.size(), loaded->dense_poses.size(),
+              loaded->scene->nativePacketWidth());
   return (cache[name] = std::move(loaded)).get();
 }
 
@@ -72,14 +73,15 @@ void setCounters(benchmark::State& state, const LoadedScene* s, const CameraConf
   state.counters["triangles"] = static_cast<double>(s->mesh.numTriangles());
 }
 
-// Args: {threads, dense}.
+// Args: {threads, dense, packet}: packets of 4, 8 or 16 rays (the renderer's
+// default is the widest the CPU traces natively, printed with the scene).
 void BM_RenderDepth(benchmark::State& state, const std::string& name) {
   const LoadedScene* s = nullptr;
   const std::vector<Transform>* poses = posesFor(state, name, &s);
   if (poses == nullptr) return;
   CameraConfig config;  // 640 x 480, 90 x 60 deg, [1.6, 8] m
   const DepthCamera camera(config);
-  const DepthRenderer renderer(*s->scene, camera, static_cast<int>(state.range(0)));
+  const DepthRenderer renderer(*s->scene, camera, static_cast<int>(state.range(0)), static_cast<int>(state.range(2)));
   DepthImage depth;
   size_t i = 0, valid = 0;
   for (auto _ : state) {
@@ -121,8 +123,8 @@ void BM_RenderDepthSingleRays(benchmark::State& state, const std::string& name) 
 
 #define NBV_RENDER_BENCH(scene)                                                                          \
   BENCHMARK_CAPTURE(BM_RenderDepth, scene, std::string(#scene))                                          \
-      ->ArgNames({"threads", "dense"})                                                                   \
-      ->ArgsProduct({{1, 2}, {0, 1}})                                                                    \
+      ->ArgNames({"threads", "dense", "packet"})                                                         \
+      ->ArgsProduct({{1, 2}, {0, 1}, {4, 8, 16}})                                                        \
       ->Unit(benchmark::kMillisecond)                                                                    \
       ->UseRealTime();                                                                                   \
   BENCHMARK_CAPTURE(BM_RenderDepthSingleRays, scene, std::string(#scene))                                \

@@ -10,9 +10,17 @@
 namespace surface_nbv {
 namespace {
 
-constexpr int kTileW = 4;  // 4 x 4 pixel tiles in 16-wide packets
-constexpr int kTileH = 4;
-constexpr int kRowsPerTask = 4;
+constexpr int kRowsPerTask = 4;  // a multiple of every tile's height
+
+void intersect(int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit4* packet) {
+  rtcIntersect4(valid, scene, context, packet);
+}
+void intersect(int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit8* packet) {
+  rtcIntersect8(valid, scene, context, packet);
+}
+void intersect(int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayHit16* packet) {
+  rtcIntersect16(valid, scene, context, packet);
+}
 
 uint64_t splitmix64(uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -33,8 +41,12 @@ float noisyDepth(float z, double k, uint64_t seed, uint64_t frame, uint64_t pixe
   return static_cast<float>(z + k * static_cast<double>(z) * z * gauss);
 }
 
-DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads)
-    : scene_(scene), camera_(camera), threads_(std::max(1, threads)) {
+DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads, int packet_width)
+    : scene_(scene),
+      camera_(camera),
+      threads_(std::max(1, threads)),
+      packet_width_(packet_width == 4 || packet_width == 8 || packet_width == 16 ? packet_width
+                                                                                 : scene.nativePacketWidth()) {
   for (int col = 0; col < camera_.width(); ++col) ray_x_.push_back(camera_.pixelRay(col, 0).x());
   for (int row = 0; row < camera_.height(); ++row) ray_y_.push_back(camera_.pixelRay(0, row).y());
 }
@@ -55,6 +67,18 @@ void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t f
 
 void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,
                                DepthImage* image) const {
+  if (packet_width_ == 16) {
+    renderTiles<RTCRayHit16, 4, 4>(T_W_C, row_begin, row_end, frame_index, image);
+  } else if (packet_width_ == 8) {
+    renderTiles<RTCRayHit8, 4, 2>(T_W_C, row_begin, row_end, frame_index, image);
+  } else {
+    renderTiles<RTCRayHit4, 2, 2>(T_W_C, row_begin, row_end, frame_index, image);
+  }
+}
+
+template <typename Packet, int TileW, int TileH>
+void DepthRenderer::renderTiles(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,
+                                DepthImage* image) const {
   const CameraConfig& cfg = camera_.config();
   const Eigen::Matrix3d R = T_W_C.linear();
   const Eigen::Vector3d o = T_W_C.translation();
@@ -64,19 +88,19 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(64) RTCRayHit16 packet;
-  alignas(64) int valid[kTileW * kTileH];
+  alignas(64) Packet packet;
+  alignas(64) int valid[TileW * TileH];
 
-  for (int k = 0; k < kTileW * kTileH; ++k) {
+  for (int k = 0; k < TileW * TileH; ++k) {
     packet.ray.org_x[k] = static_cast<float>(o.x());
     packet.ray.org_y[k] = static_cast<float>(o.y());
     packet.ray.org_z[k] = static_cast<float>(o.z());
     packet.ray.id[k] = static_cast<unsigned>(k);
   }
-  for (int row0 = row_begin; row0 < row_end; row0 += kTileH) {
-    for (int col0 = 0; col0 < width; col0 += kTileW) {
-      for (int k = 0; k < kTileW * kTileH; ++k) {
-        const int row = row0 + k / kTileW, col = col0 + k % kTileW;
+  for (int row0 = row_begin; row0 < row_end; row0 += TileH) {
+    for (int col0 = 0; col0 < width; col0 += TileW) {
+      for (int k = 0; k < TileW * TileH; ++k) {
+        const int row = row0 + k / TileW, col = col0 + k % TileW;
         valid[k] = row < row_end && col < width ? -1 : 0;
         const Eigen::Vector3d d =
             R * Eigen::Vector3d(ray_x_[std::min(col, width - 1)], ray_y_[std::min(row, row_end - 1)], 1.0);
@@ -90,10 +114,10 @@ void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_en
         packet.ray.flags[k] = 0;
         packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       }
-      rtcIntersect16(valid, scene_.handle(), &context, &packet);
-      for (int k = 0; k < kTileW * kTileH; ++k) {
+      intersect(valid, scene_.handle(), &context, &packet);
+      for (int k = 0; k < TileW * TileH; ++k) {
         if (!valid[k]) continue;
-        const int row = row0 + k / kTileW, col = col0 + k % kTileW;
+        const int row = row0 + k / TileW, col = col0 + k % TileW;
         // REP 117: +Inf = no return within max range, -Inf = too close.
         float z = std::numeric_limits<float>::infinity();
         if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {

@@ -42,6 +42,12 @@ Status RaycastScene::create(const TriangleMesh& mesh, std::unique_ptr<RaycastSce
   return Status::Ok();
 }
 
+int RaycastScene::nativePacketWidth() const {
+  if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0) return 16;
+  if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED) != 0) return 8;
+  return 4;
+}
+
 RaycastScene::~RaycastScene() {
   if (scene_ != nullptr) rtcReleaseScene(scene_);
   if (device_ != nullptr) rtcReleaseDevice(device_);

@@ -1,6 +1,9 @@
-// Renders depth images of a RaycastScene with Embree 16-wide ray packets
-// (4 x 4 pixel tiles), bands of rows shared among `threads` worker threads
-// (the calling thread is one of them). Output is z in the optical
+// Renders depth images of a RaycastScene with Embree ray packets of 16
+// (4 x 4 pixel tiles), 8 (4 x 2) or 4 (2 x 2) rays, bands of rows shared
+// among `threads` worker threads (the calling thread is one of them). The
+// width defaults to the widest Embree traces natively on the CPU: a packet
+// wider than that is traced as narrower ones and costs more (scripts/bench
+// sim compares them). Every width gives the same image. Output is z in the optical
 // frame in metres; REP 117: +Inf for no return within max range, -Inf for a
 // surface closer than min range.
 // Noise (if the camera's noise_k > 0) is a pure function of (seed, frame
@@ -21,20 +24,26 @@ namespace surface_nbv {
 class DepthRenderer {
  public:
   // `scene` must outlive the renderer. threads < 1 is treated as 1.
-  DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads = 1);
+  // packet_width: 4, 8 or 16 rays; anything else takes the scene's
+  // nativePacketWidth().
+  DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads = 1, int packet_width = 0);
 
   // T_W_C: pose of the optical frame in the scene frame.
   void render(const Transform& T_W_C, DepthImage* image, uint64_t frame_index = 0) const;
 
   const DepthCamera& camera() const { return camera_; }
   int threads() const { return threads_; }
+  int packetWidth() const { return packet_width_; }
 
  private:
   void renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
+  template <typename Packet, int TileW, int TileH>
+  void renderTiles(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
 
   const RaycastScene& scene_;
   DepthCamera camera_;
   int threads_;
+  int packet_width_;
   // The camera's pixel rays (x / z per column, y / z per row), as pixelRay()
   // computes them, so a frame does no divisions.
   std::vector<double> ray_x_, ray_y_;

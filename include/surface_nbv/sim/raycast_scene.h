@@ -29,6 +29,9 @@ class RaycastScene {
 
   RTCScene handle() const { return scene_; }
   size_t numTriangles() const { return num_triangles_; }
+  // The widest ray packet Embree traces natively on this CPU: 16 with
+  // AVX-512, 8 with AVX2, else 4 (RTC_DEVICE_PROPERTY_NATIVE_RAY*_SUPPORTED).
+  int nativePacketWidth() const;
 
  private:
   RaycastScene() = default;
