@@ -187,7 +187,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("head_lookahead", &c->explorer.head_lookahead);
-  m.get("insert_after", &c->explorer.insert_after);
   m.get("gaze", &c->explorer.gaze.enabled);
   m.get("gaze_step", &c->explorer.gaze.step);
   m.get("gaze_min_ises", &c->explorer.gaze.min_ises);

@@ -48,7 +48,6 @@ Status ExplorerConfig::validate() const {
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
-  if (insert_after < 1) return Status::Error("insert_after expected >= 1");
   if (gaze.enabled) {
     if (!travel_yaw) return Status::Error("gaze expects travel_yaw (it turns the yaws travel_yaw sets)");
     if (Status s = gaze.validate(); !s) return s;
@@ -106,7 +105,6 @@ void Explorer::reset() {
   places_.clear();
   blacklist_.clear();
   arcs_.clear();
-  waiting_.clear();
   stats_ = ExplorerStats();
 }
 
@@ -175,7 +173,6 @@ bool Explorer::fullRecompute(const Frontier& frontier, const Eigen::Vector4d& ua
   tour_.clear();
   have_target_ = false;
   path_.clear();
-  waiting_.clear();
   ++stats_.full_recomputes;
   stats_.clusters = frontier.clusters.size();
   if (plan.status != TourPlanStatus::kOk) {
@@ -221,7 +218,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
   if (tour_.empty()) return false;
   // Wanted frontier viewpoints near no tour viewpoint are new: cheapest insertion.
   size_t inserted = 0;
-  std::vector<std::pair<Eigen::Vector3d, double>> waiting;
   for (size_t i = 0; i < frontier.viewpoints.size(); ++i) {
     if (matched[i] || !wanted(frontier, i)) continue;
     if (frontier.viewpoints[i].unknown_fraction < config_.pool_unknown_below) {
@@ -230,13 +226,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
     }
     const Eigen::Vector4d q = configurationOf(frontier.viewpoints[i]);
     const Eigen::Vector3d x = q.head<3>();
-    if (config_.insert_after > 1) {
-      const int seen = 1 + static_cast<int>(nearestValue(waiting_, x, 0));
-      if (seen < config_.insert_after) {
-        waiting.emplace_back(x, static_cast<double>(seen));
-        continue;
-      }
-    }
     // Position p: before tour_[p]; tour_[0] stays first while it is the target.
     size_t best = tour_.size();
     double best_cost = (tour_.back().head<3>() - x).norm();
@@ -249,7 +238,6 @@ bool Explorer::localUpdate(const Frontier& frontier, const Eigen::Vector4d& uav,
     tour_.insert(tour_.begin() + static_cast<long>(best), q);
     ++inserted;
   }
-  waiting_ = std::move(waiting);
   if (inserted > 0 && d->reason == ReplanReason::kNone) d->reason = ReplanReason::kNewIses;
   if (inserted > 0 || removed) ++stats_.local_updates;
   d->timings.tour_ms = msSince(t0);

@@ -186,41 +186,6 @@ TEST(Explorer, LocalUpdateDropsCoveredViewpointsAndInsertsNewOnes) {
   for (const Eigen::Vector4d& q : explorer.tour()) EXPECT_LT(q.x(), 0.0) << "covered viewpoint kept";
 }
 
-// insert_after 2: a new viewpoint joins the tour in the second frontier
-// that holds it; one that is gone by then never joins.
-TEST(Explorer, InsertAfterWaitsForANewViewpointToPersist) {
-  WallWorld world(true);
-  ExplorerConfig config;
-  config.insert_after = 2;
-  Explorer explorer(config, pathConfig());
-  ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-  const std::vector<Eigen::Vector3d> near = {{-3, 2, 2.5}, {-3, 3, 2.5}};
-  ASSERT_EQ(explorer.update(makeFrontier({near}), kUav, false).action, ExplorerAction::kFly);
-  ASSERT_EQ(explorer.tour().size(), 2u);
-  auto inTour = [&](const Eigen::Vector3d& p) {
-    for (const Eigen::Vector4d& q : explorer.tour())
-      if ((q.head<3>() - p).norm() < 1e-9) return true;
-    return false;
-  };
-  const Eigen::Vector3d transient(-2, 4, 2.5), lasting(-4, 1, 2.5);
-  explorer.update(makeFrontier({near, {transient, lasting}}), kUav, false);
-  EXPECT_EQ(explorer.tour().size(), 2u) << "a viewpoint joined in its first frontier";
-  // The next frontier holds `lasting`, moved by less than match_radius, and not `transient`.
-  const Eigen::Vector3d moved = lasting + Eigen::Vector3d(0.0, 0.4, 0.0);
-  explorer.update(makeFrontier({near, {moved}}), kUav, false);
-  EXPECT_EQ(explorer.tour().size(), 3u);
-  EXPECT_TRUE(inTour(moved));
-  explorer.update(makeFrontier({near, {moved, transient}}), kUav, false);
-  EXPECT_FALSE(inTour(transient)) << "a viewpoint absent from one frontier kept its count";
-
-  // insert_after 1, the default: at once.
-  Explorer at_once(ExplorerConfig(), pathConfig());
-  ASSERT_TRUE(at_once.setMap(&world.collision(), world.bounds()).ok());
-  at_once.update(makeFrontier({near}), kUav, false);
-  at_once.update(makeFrontier({near, {transient, lasting}}), kUav, false);
-  EXPECT_EQ(at_once.tour().size(), 4u);
-}
-
 TEST(Explorer, CoveredTargetGivesALegToTheNextViewpoint) {
   WallWorld world(true);
   Explorer explorer(ExplorerConfig(), pathConfig());
@@ -565,9 +530,6 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.head_lookahead = -1;
   EXPECT_NE(c.validate().message().find("head_lookahead"), std::string::npos);
-  c = ExplorerConfig();
-  c.insert_after = 0;
-  EXPECT_NE(c.validate().message().find("insert_after"), std::string::npos);
   for (double budget : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     c = ExplorerConfig();
     c.leg_time_budget = budget;

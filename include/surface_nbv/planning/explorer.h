@@ -75,11 +75,6 @@ struct ExplorerConfig {
   GazeConfig gaze;
   // A tour viewpoint must still see at least this many ISEs (|C_q|).
   int min_visible = 0;
-  // Local update: a new frontier viewpoint joins the tour once it has been in
-  // this many consecutive frontiers (within match_radius of itself), so that
-  // viewpoints the flight's own views complete within a frontier period are
-  // never flown to. 1: at once (the paper's local update).
-  int insert_after = 1;
   // While other viewpoints are in the tour, a viewpoint that faces less than
   // this share of unknown space (Viewpoint::unknown_fraction) does not join
   // it, and one that becomes the next target leaves it: leftovers wait until
@@ -272,7 +267,6 @@ class Explorer {
   std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
   std::vector<std::pair<Eigen::Vector3d, double>> visible_;  // last frontier: wanted viewpoints, |C_q| (head_lookahead)
   std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
-  std::vector<std::pair<Eigen::Vector3d, double>> waiting_;  // insert_after: new viewpoints, frontiers seen
   ExplorerStats stats_;
 };
 
