@@ -3,9 +3,9 @@
 // among `threads` worker threads (the calling thread is one of them). The
 // width defaults to the widest Embree traces natively on the CPU: a packet
 // wider than that is traced as narrower ones and costs more (scripts/bench
-// sim compares them). Every width gives the same image. Output is z in the optical
-// frame in metres; REP 117: +Inf for no return within max range, -Inf for a
-// surface closer than min range.
+// sim compares them). Every width gives the same image. Output is z in the
+// optical frame in metres; REP 117: +Inf for no return within max range,
+// -Inf for a surface closer than min range.
 // Noise (if the camera's noise_k > 0) is a pure function of (seed, frame
 // index, pixel), so an image repeats exactly whatever the thread count.
 // Thread safety: render() is const; one renderer may serve many threads.
