@@ -58,23 +58,17 @@ TEST(DepthRenderer, EveryPacketWidthRendersTheSameImage) {
                              lookAlong(Vector3d(6, -3, 47), Vector3d(-1, 0.4, 0.3))};
   for (const CameraConfig& config : {CameraConfig(), oddCamera()}) {
     for (const Transform& T : poses) {
-      std::vector<DepthImage> images;
-      for (int width : {4, 8, 16}) {
+      DepthImage four;
+      DepthRenderer(*scene, DepthCamera(config), 2, 4).render(T, &four);
+      ASSERT_GT(four.validCount(), four.data.size() / 10);
+      ASSERT_LT(four.validCount(), four.data.size());
+      for (int width : {8, 16}) {
         const DepthRenderer renderer(*scene, DepthCamera(config), 2, width);
         ASSERT_EQ(renderer.packetWidth(), width);
-        images.emplace_back();
-        renderer.render(T, &images.back());
-      }
-      ASSERT_GT(images[0].validCount(), images[0].data.size() / 10);
-      ASSERT_LT(images[0].validCount(), images[0].data.size());
-      for (size_t k = 1; k < images.size(); ++k) {
-        ASSERT_EQ(images[k].data.size(), images[0].data.size());
-        size_t differ = 0;
-        for (size_t i = 0; i < images[0].data.size(); ++i) {
-          const float a = images[0].data[i], b = images[k].data[i];
-          differ += !(a == b || (std::isnan(a) && std::isnan(b)));
-        }
-        EXPECT_EQ(differ, 0u) << "packet " << (k == 1 ? 8 : 16) << ", " << config.width << " px";
+        DepthImage image;
+        renderer.render(T, &image);
+        // No NaN to compare: misses are +-Inf (REP 117), equal to themselves.
+        EXPECT_TRUE(image.data == four.data) << "packet " << width << ", " << config.width << " px";
       }
     }
   }
