@@ -14,9 +14,55 @@ MeshLayer::MeshLayer(const TsdfMap* planning) : planning_(planning) {
   integrator_ = std::make_unique<TsdfIntegrator>(map_.get());
 }
 
-MeshLayer::~MeshLayer() { finish(); }
+MeshLayer::~MeshLayer() {
+  finish();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  queued_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
 
-Status MeshLayer::finish() { return behind_.valid() ? behind_.get() : Status::Ok(); }
+Status MeshLayer::finish() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  fused_.wait(lock, [this] { return frames_.empty(); });
+  Status failure = failure_;
+  failure_ = Status::Ok();
+  return failure;
+}
+
+void MeshLayer::setQueueDepth(size_t frames) { queue_depth_ = std::max<size_t>(1, frames); }
+
+bool MeshLayer::busy() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return frames_.size() >= queue_depth_;
+}
+
+size_t MeshLayer::pending() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return frames_.size();
+}
+
+void MeshLayer::work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    queued_.wait(lock, [this] { return stop_ || !frames_.empty(); });
+    if (frames_.empty()) return;
+    // References to a deque's elements survive push_back; only this thread pops.
+    Frame& frame = frames_.front();
+    lock.unlock();
+    const int layer_threads = integrator_->threads();
+    integrator_->setThreads(1);
+    const Status s = integrator_->integrateDepth(frame.camera, frame.depth, frame.T_W_C);
+    integrator_->setThreads(layer_threads);
+    lock.lock();
+    if (!s && failure_.ok()) failure_ = s;
+    spare_.push_back(std::move(frame.depth));
+    frames_.pop_front();
+    fused_.notify_all();
+  }
+}
 
 Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& depth, const Transform& T_W_C) {
   const Status previous = finish();
@@ -26,27 +72,37 @@ Status MeshLayer::integrateDepth(const DepthCamera& camera, const DepthImage& de
 
 Status MeshLayer::integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
                                        const Transform& T_W_C, int threads, IntegrationStats* stats, Status* layer) {
-  Status layered = finish();  // the previous frame's
+  Status layered;
   Status planned;
   if (!integrator_ || threads < 2) {
+    layered = finish();
     Status now;
     planned = integrateDepthWith(planning, camera, depth, T_W_C, threads, stats, &now);
     if (layered) layered = now;
   } else {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      fused_.wait(lock, [this] { return frames_.size() < queue_depth_; });
+      layered = failure_;
+      failure_ = Status::Ok();
+    }
     const int planning_threads = planning->threads();
     planning->setThreads(threads - 1);
     planned = planning->integrateDepth(camera, depth, T_W_C, stats);
     planning->setThreads(planning_threads);
     if (planned) {
-      behind_depth_ = depth;
-      behind_camera_.emplace(camera);
-      behind_ = std::async(std::launch::async, [this, T_W_C] {
-        const int layer_threads = integrator_->threads();
-        integrator_->setThreads(1);
-        Status s = integrator_->integrateDepth(*behind_camera_, behind_depth_, T_W_C);
-        integrator_->setThreads(layer_threads);
-        return s;
-      });
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        DepthImage copy;
+        if (!spare_.empty()) {
+          copy = std::move(spare_.back());
+          spare_.pop_back();
+        }
+        copy = depth;  // keeps the spare buffer's capacity
+        frames_.push_back(Frame{camera, std::move(copy), T_W_C});
+      }
+      if (!worker_.joinable()) worker_ = std::thread(&MeshLayer::work, this);
+      queued_.notify_one();
     }
   }
   if (layer != nullptr) {

@@ -17,11 +17,13 @@
 // Feed it every frame the planning map gets, with the same weight scale.
 #pragma once
 
-#include <chrono>
-#include <future>
+#include <condition_variable>
+#include <deque>
 #include <memory>
-#include <optional>
+#include <mutex>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/map/tsdf_map.h"
@@ -33,7 +35,7 @@ class MeshLayer {
   // planning: the map every frame is also integrated into (not owned; must
   // outlive this object). Its config decides whether a separate layer exists.
   explicit MeshLayer(const TsdfMap* planning);
-  ~MeshLayer();  // waits for a fusion in flight (integrateDepthBehind)
+  ~MeshLayer();  // waits for the frames in flight (integrateDepthBehind)
   MeshLayer(const MeshLayer&) = delete;
   MeshLayer& operator=(const MeshLayer&) = delete;
 
@@ -58,25 +60,33 @@ class MeshLayer {
                             Status* layer = nullptr);
   // The same frame as integrateDepthWith(), but the layer's fusion runs on a
   // thread of its own while the caller goes on: the planning map is fused
-  // on the calling thread (threads - 1 of them), after the layer's fusion of
-  // the previous frame has ended; then this frame's starts, on copies of
-  // `camera` and `depth`. The layer takes the same frames in the same order,
-  // so it ends voxel for voxel as integrateDepthWith() leaves it. The
-  // layer's failure on the previous frame goes to *layer when given (the
-  // planning map's status is returned), else it is returned unless the
-  // planning map failed. Call finish() before reading map(); every other
-  // method and the destructor call it first, and report a failure it
-  // returns as the layer's (after doing their own work).
+  // on the calling thread (threads - 1 of them) once fewer than
+  // queueDepth() frames wait for the layer; then this frame joins them, as
+  // copies of `camera` and `depth`. The layer takes the same frames in the
+  // same order, so it ends voxel for voxel as integrateDepthWith() leaves
+  // it. A failure of the layer on an earlier frame goes to *layer when
+  // given (the planning map's status is returned), else it is returned
+  // unless the planning map failed. Call finish() before reading map();
+  // every other method and the destructor call it first, and report a
+  // failure it returns as the layer's (after doing their own work).
   Status integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
                               const Transform& T_W_C, int threads, IntegrationStats* stats = nullptr,
                               Status* layer = nullptr);
-  // Waits for the layer's fusion in flight; its status (Ok when none).
+  // How many frames integrateDepthBehind() may leave to the layer before it
+  // waits (at least 1, the default: the previous frame only). A deeper
+  // queue lets the layer catch up while the caller does work of its own on
+  // one thread (nbv_mission plans its legs), at one depth image of memory
+  // per frame; the maps end the same either way.
+  void setQueueDepth(size_t frames);
+  size_t queueDepth() const { return queue_depth_; }
+  // Waits for the layer's frames in flight; the first failure among them
+  // since the last report (Ok when none).
   Status finish();
-  // Whether a fusion is still in flight (a real-time caller may fuse the
-  // next frame into the planning map alone instead of waiting).
-  bool busy() const {
-    return behind_.valid() && behind_.wait_for(std::chrono::seconds(0)) != std::future_status::ready;
-  }
+  // Whether queueDepth() frames are in flight (a real-time caller may fuse
+  // the next frame into the planning map alone instead of waiting).
+  bool busy() const;
+  // Frames waiting for the layer or being fused into it.
+  size_t pending() const;
   Status markFree(const Eigen::Vector3d& center, double radius);
   void setWeightScale(double scale);
   // After the planning map was loaded from `path`: the layer starts again
@@ -89,9 +99,23 @@ class MeshLayer {
   const TsdfMap* planning_;
   std::unique_ptr<TsdfMap> map_;
   std::unique_ptr<TsdfIntegrator> integrator_;
-  std::future<Status> behind_;  // the layer's fusion in flight
-  DepthImage behind_depth_;      // its frame
-  std::optional<DepthCamera> behind_camera_;
+  size_t queue_depth_ = 1;  // the caller's setting; the layer's thread never reads it
+
+  // The layer's thread and the frames it has still to fuse (the front one
+  // is in progress); every member below is guarded by mutex_.
+  struct Frame {
+    DepthCamera camera;
+    DepthImage depth;
+    Transform T_W_C;
+  };
+  void work();
+  mutable std::mutex mutex_;
+  std::condition_variable queued_, fused_;
+  std::deque<Frame> frames_;
+  std::vector<DepthImage> spare_;  // buffers of fused frames, for the next ones
+  Status failure_;                 // the first failure not reported yet
+  bool stop_ = false;
+  std::thread worker_;  // started with the first frame behind
 };
 
 }  // namespace surface_nbv
