@@ -96,6 +96,9 @@ Status MissionConfig::validate() const {
   }
   if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("mission/start_spin expected in [0, 20] rad");
   if (!positive(progress_period)) return Status::Error("mission/progress_period expected > 0");
+  if (mesh_layer_queue < 1 || mesh_layer_queue > 4096) {
+    return Status::Error("mission/mesh_layer_queue expected in [1, 4096] frames");
+  }
   if (threads < 1 || threads > 64) return Status::Error("mission/threads expected in [1, 64]");
   return Status::Ok();
 }
@@ -164,6 +167,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("start_free_radius", &c->start_free_radius);
   m.get("start_spin", &c->start_spin);
   m.get("progress_period", &c->progress_period);
+  m.get("mesh_layer_queue", &c->mesh_layer_queue);
   m.get("threads", &c->threads);
   m.get("seed", &c->seed);
   m.get("collision_radius", &c->path.collision_radius);

@@ -44,10 +44,6 @@ bool legEnded(const TrackerSim& tracker, double lookahead, double reach, double 
 
 // A decision slower than this (wall) is reported on stderr as it happens.
 constexpr double kSlowDecisionMs = 3000.0;
-// Frames the mesh layer may lag behind the planning map: it catches up on
-// the second core while the explorer plans on one (64 depth images, 79 MB
-// at 640 x 480).
-constexpr size_t kMeshLayerQueue = 64;
 
 }  // namespace
 
@@ -96,7 +92,7 @@ MissionResult MissionRunner::run() {
   // in that time (rate_hz / frame_rate of them): the same weight per second.
   integrator.setWeightScale(std::max(1.0, c.camera.rate_hz / c.frame_rate));
   mesh_layer_ = std::make_unique<MeshLayer>(map_.get());
-  mesh_layer_->setQueueDepth(kMeshLayerQueue);
+  mesh_layer_->setQueueDepth(static_cast<size_t>(c.mesh_layer_queue));
   mesh_layer_->setWeightScale(integrator.weightScale());
   CameraConfig camera_config = c.camera;
   camera_config.noise_seed = c.camera.noise_seed + c.seed;

@@ -278,6 +278,31 @@ TEST(MeshLayer, FusionBehindEqualsOneAfterTheOther) {
   expectSameVoxels(f.serial.layer.map(), f.tested.layer.map());
 }
 
+// A queue of frames behind (setQueueDepth): the caller goes on while up to
+// that many frames wait for the layer, which still takes them all in order.
+TEST(MeshLayer, FusionBehindAQueueEqualsOneAfterTheOther) {
+  TsdfConfig config = layeredConfig();
+  config.mesh_voxel_size = 0.05;
+  FusionOrder f(config);
+  ASSERT_NE(f.scene, nullptr);
+  EXPECT_EQ(f.tested.layer.queueDepth(), 1u);
+  f.tested.layer.setQueueDepth(0);
+  EXPECT_EQ(f.tested.layer.queueDepth(), 1u);  // at least the frame in flight
+  f.tested.layer.setQueueDepth(4);
+  for (int k = 0; k < 12; ++k) {
+    const Transform T = f.frame(k);
+    ASSERT_TRUE(f.tested.layer.integrateDepthBehind(&f.tested.integrator, f.camera, f.depth, T, 2).ok());
+    EXPECT_LE(f.tested.layer.pending(), 4u) << k;
+    std::fill(f.depth.data.begin(), f.depth.data.end(), 1.0f);  // the caller reuses its buffer at once
+  }
+  ASSERT_TRUE(f.tested.layer.finish().ok());
+  EXPECT_EQ(f.tested.layer.pending(), 0u);
+  EXPECT_FALSE(f.tested.layer.busy());
+  expectSameVoxels(f.serial.map, f.tested.map);
+  expectSameVoxels(f.serial.layer.map(), f.tested.layer.map());
+  EXPECT_EQ(f.tested.integrator.threads(), 3);
+}
+
 TEST(MeshLayer, ReloadStartsAgainFromTheLoadedFile) {
   TsdfMap planning(layeredConfig());
   TsdfIntegrator integrator(&planning);

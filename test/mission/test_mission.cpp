@@ -111,6 +111,11 @@ TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   s = loadMissionConfig("/nonexistent/mission.yaml", &c);
   EXPECT_NE(s.message().find("cannot read"), std::string::npos) << s.message();
   c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("queue.yaml", "mission:\n  mesh_layer_queue: 8\n"), &c).ok());
+  EXPECT_EQ(c.mesh_layer_queue, 8);
+  c.mesh_layer_queue = 0;
+  EXPECT_NE(c.validate().message().find("mission/mesh_layer_queue"), std::string::npos);
+  c = MissionConfig();
   c.start = Eigen::Vector4d(100, 0, 2, 0);
   EXPECT_NE(c.validate().message().find("mission/start"), std::string::npos);
 }

@@ -20,6 +20,7 @@ namespace {
 struct MissionRun {
   MissionResult result;
   uint64_t map_hash = 0;
+  uint64_t mesh_hash = 0;  // the mesh layer's map
   size_t known = 0;
 };
 
@@ -39,13 +40,15 @@ class MissionDeterminism : public ::testing::Test {
     ASSERT_TRUE(RaycastScene::create(mesh, &scene_).ok());
   }
 
-  MissionRun run(unsigned int seed) const {
-    MissionConfig c = config_;
+  MissionRun run(unsigned int seed) const { return run(config_, seed); }
+  MissionRun run(const MissionConfig& config, unsigned int seed) const {
+    MissionConfig c = config;
     c.seed = seed;
     MissionRunner runner(c, *scene_);
     MissionRun r;
     r.result = runner.run();
     r.map_hash = fuzz::mapDigest(runner.map());
+    r.mesh_hash = fuzz::mapDigest(runner.meshMap());
     for (const auto& block : runner.map().blocks()) {
       for (const TsdfVoxel& v : block->voxels) r.known += runner.map().stateOf(v) != VoxelState::kUnknown ? 1 : 0;
     }
@@ -101,6 +104,29 @@ TEST_F(MissionDeterminism, SameSeedGivesTheSameMapAndPlanAnotherSeedAnotherPath)
   }
   EXPECT_FALSE(same_path) << "seeds 1 and 2 flew the same path";
   EXPECT_NE(other.map_hash, first.map_hash);
+}
+
+// The mesh layer fused on its own thread, waiting for every frame or
+// lagging up to 64 (mission/mesh_layer_queue): the same flight, the same
+// planning map and the same layer.
+TEST_F(MissionDeterminism, MeshLayerQueueChangesNeitherTheFlightNorTheMaps) {
+  MissionConfig c = config_;
+  c.threads = 2;  // the layer fuses behind the caller only with two threads or more
+  c.tsdf.mesh_voxel_size = 0.5 * c.tsdf.voxel_size;
+  c.tsdf.mesh_truncation = 3.0 * c.tsdf.voxel_size;
+  c.mesh_layer_queue = 1;
+  ASSERT_TRUE(c.validate().ok()) << c.validate().message();
+  const MissionRun waiting = run(c, 1);
+  c.mesh_layer_queue = 64;
+  const MissionRun lagging = run(c, 1);
+  ASSERT_TRUE(waiting.result.status.ok()) << waiting.result.status.message();
+  ASSERT_TRUE(lagging.result.status.ok()) << lagging.result.status.message();
+  EXPECT_GT(waiting.result.frames, 64u);  // the queue filled up
+  EXPECT_NE(waiting.mesh_hash, waiting.map_hash);  // a layer of its own
+  EXPECT_EQ(waiting.map_hash, lagging.map_hash);
+  EXPECT_EQ(waiting.mesh_hash, lagging.mesh_hash);
+  expectSameDecisions(waiting.result, lagging.result);
+  EXPECT_EQ(waiting.result.flown, lagging.result.flown);
 }
 
 }  // namespace

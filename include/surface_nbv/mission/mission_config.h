@@ -57,6 +57,11 @@ struct MissionConfig {
   double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
   double progress_period = 60.0;   // flight seconds between progress lines
   int threads = 2;                 // render, integration and frontier threads
+  // Frames the mesh layer may lag behind the planning map (MeshLayer::
+  // setQueueDepth): it catches up on the second core while the explorer
+  // plans on one. 1 waits for every frame; 64 depth images at 640 x 480 are
+  // 79 MB. The maps and the flight are the same either way.
+  int mesh_layer_queue = 64;
   unsigned int seed = 1;           // path sampling and depth noise (per trial: seed + trial)
 
   // Names the first bad key.
