@@ -12,6 +12,8 @@
 //   BM_RoadmapEdges    PathPlanner::roadmapEdges(20000), what nbv_planner's
 //                      roadmap marker copies out of OMPL, after N path queries
 //                      between frontier viewpoints (argument N)
+//   BM_ReachableFill   ReachableSpace::fill from the UAV at the planner's
+//                      clearance, what the explorer does once per map version
 // Counters give the stage split (ms) and the frontier's size; BM_PathQuery
 // also the median query (median_ms) and the roadmap's size.
 //   scripts/bench explorer
@@ -25,6 +27,7 @@
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/mission/mission_runner.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/reachable_space.h"
 #include "surface_nbv/surface/frontier_builder.h"
 
 using namespace surface_nbv;
@@ -205,6 +208,23 @@ void BM_RoadmapEdges(benchmark::State& state) {
   state.counters["edges"] = static_cast<double>(edges);
 }
 BENCHMARK(BM_RoadmapEdges)->Arg(50)->Arg(300)->Unit(benchmark::kMillisecond)->Iterations(20);
+
+void BM_ReachableFill(benchmark::State& state) {
+  World& w = world();
+  if (!w.ok) return state.SkipWithError("no power plant frontier");
+  PathPlanner planner(w.config.path);
+  planner.setMap(w.collision.get(), w.config.tsdf.bounds);
+  const double radius = planner.clearance() + w.config.explorer.reach_clearance;
+  ReachableSpace space;
+  for (auto _ : state) {
+    space.fill(*w.collision, w.config.tsdf.bounds, w.uav.head<3>(), radius);
+    benchmark::DoNotOptimize(space.size());
+  }
+  const Eigen::Vector3i cells = w.collision->gridCells();
+  state.counters["filled"] = static_cast<double>(space.size());
+  state.counters["grid"] = static_cast<double>(cells.prod());
+}
+BENCHMARK(BM_ReachableFill)->Unit(benchmark::kMillisecond)->Iterations(20);
 
 }  // namespace
 

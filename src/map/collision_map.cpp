@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Geometry>
 #include <dynamicEDT3D/dynamicEDT3D.h>
@@ -15,6 +16,8 @@ class CollisionMap::Edt : public DynamicEDT3D {
   explicit Edt(int cap_cells) : DynamicEDT3D(cap_cells * cap_cells) {}
 
   int sqCells(const Eigen::Vector3i& c) const { return data[c.x()][c.y()][c.z()].sqdist; }
+  // The cells (x, y, 0 .. z-1), contiguous.
+  const dataCell* row(int x, int y) const { return data[x][y]; }
   // The nearest obstacle cell, false when none is within the cap.
   bool nearest(int x, int y, int z, Eigen::Vector3i* obstacle) const {
     const dataCell& d = data[x][y][z];
@@ -245,6 +248,30 @@ bool CollisionMap::isObstacleCell(const Eigen::Vector3i& cell) const {
 double CollisionMap::cellCentreDistance(const Eigen::Vector3i& cell) const {
   if ((cell.array() < 0).any() || (cell.array() >= grid_cells_.array()).any()) return 0.0;
   return std::sqrt(static_cast<double>(edt_->sqCells(cell))) * cell_size_;
+}
+
+void CollisionMap::clearCells(double clear, std::vector<uint8_t>* mask) const {
+  const int sx = grid_cells_.x(), sy = grid_cells_.y(), sz = grid_cells_.z();
+  mask->assign(static_cast<size_t>(sx) * sy * sz, 0);
+  // cellCentreDistance() >= clear is monotone in the squared cell distance:
+  // find the smallest one that passes, with the same arithmetic.
+  const auto passes = [&](long long sq) { return std::sqrt(static_cast<double>(sq)) * cell_size_ >= clear; };
+  constexpr long long kMaxSq = std::numeric_limits<int>::max();
+  if (std::isnan(clear) || !passes(kMaxSq)) return;
+  long long min_sq = 0;
+  if (!passes(0)) {
+    const double r = clear / cell_size_;
+    min_sq = std::clamp(static_cast<long long>(std::floor(r * r)) - 2, 0LL, kMaxSq);
+    while (!passes(min_sq)) ++min_sq;
+    while (min_sq > 0 && passes(min_sq - 1)) --min_sq;
+  }
+  uint8_t* out = mask->data();
+  for (int x = 0; x < sx; ++x) {
+    for (int y = 0; y < sy; ++y) {
+      const auto* cells = edt_->row(x, y);
+      for (int z = 0; z < sz; ++z) *out++ = cells[z].sqdist >= min_sq ? 1 : 0;
+    }
+  }
 }
 
 size_t CollisionMap::memoryBytes() const {

@@ -20,13 +20,13 @@ void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, con
   origin_ = bounds.min;
   cells_ = map.gridCells();
   cell_ = map.cellSize();
-  in_.assign(static_cast<size_t>(cells_.prod()), 0);
   filled_ = 0;
   seeded_ = false;
-  const double clear = radius - slack;
+  // kOpen where the cell is clear (one pass over the transform), then the
+  // fill turns the connected ones to kFilled.
+  map.clearCells(radius - slack, &state_);
   auto open = [&](const Eigen::Vector3i& c) {
-    return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && in_[index(c)] == 0 &&
-           map.cellCentreDistance(c) >= clear;
+    return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && state_[index(c)] == kOpen;
   };
   std::vector<Eigen::Vector3i> stack;
   Eigen::Vector3i start;
@@ -40,39 +40,51 @@ void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, con
         for (int i = -n; i <= n; ++i) {
           const Eigen::Vector3i c = start + Eigen::Vector3i(i, j, k);
           if (Eigen::Vector3d(i, j, k).norm() * cell_ <= seed_radius && open(c)) {
-            in_[index(c)] = 1;
+            state_[index(c)] = kFilled;
             stack.push_back(c);
           }
         }
   }
   if (stack.empty()) return;
   seeded_ = true;
-  for (const Eigen::Vector3i& c : stack) in_[index(c)] = 1;
+  for (const Eigen::Vector3i& c : stack) state_[index(c)] = kFilled;
   filled_ = stack.size();
-  static const Eigen::Vector3i kSteps[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int nx = cells_.x(), ny = cells_.y(), nz = cells_.z();
+  const ptrdiff_t step_x = static_cast<ptrdiff_t>(ny) * nz, step_y = nz;
   while (!stack.empty()) {
     const Eigen::Vector3i c = stack.back();
     stack.pop_back();
-    for (const Eigen::Vector3i& s : kSteps) {
-      const Eigen::Vector3i d = c + s;
-      if (!open(d)) continue;
-      in_[index(d)] = 1;
+    const ptrdiff_t i = static_cast<ptrdiff_t>(index(c));
+    // The six neighbours, each inside the grid and still open.
+    const auto visit = [&](bool inside, ptrdiff_t offset, const Eigen::Vector3i& d) {
+      if (!inside || state_[i + offset] != kOpen) return;
+      state_[i + offset] = kFilled;
       ++filled_;
       stack.push_back(d);
-    }
+    };
+    visit(c.x() + 1 < nx, step_x, c + Eigen::Vector3i(1, 0, 0));
+    visit(c.x() > 0, -step_x, c - Eigen::Vector3i(1, 0, 0));
+    visit(c.y() + 1 < ny, step_y, c + Eigen::Vector3i(0, 1, 0));
+    visit(c.y() > 0, -step_y, c - Eigen::Vector3i(0, 1, 0));
+    visit(c.z() + 1 < nz, 1, c + Eigen::Vector3i(0, 0, 1));
+    visit(c.z() > 0, -1, c - Eigen::Vector3i(0, 0, 1));
   }
+}
+
+bool ReachableSpace::filled(const Eigen::Vector3i& cell) const {
+  return (cell.array() >= 0).all() && (cell.array() < cells_.array()).all() && state_[index(cell)] == kFilled;
 }
 
 bool ReachableSpace::reachable(const Eigen::Vector3d& p) const {
   if (!seeded_) return true;
   Eigen::Vector3i c;
   if (!cellOf(p, &c)) return false;
-  if (in_[index(c)]) return true;
+  if (state_[index(c)] == kFilled) return true;
   for (int a = 0; a < 3; ++a) {
     for (int s = -1; s <= 1; s += 2) {
       Eigen::Vector3i d = c;
       d[a] += s;
-      if (d[a] >= 0 && d[a] < cells_[a] && in_[index(d)]) return true;
+      if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] == kFilled) return true;
     }
   }
   return false;

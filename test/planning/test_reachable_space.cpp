@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "planning_test_worlds.h"
 #include "surface_nbv/planning/path_planner.h"
@@ -64,4 +66,81 @@ TEST(ReachableSpace, NoClearSeedMeansNothingIsKnown) {
   // With the default seed radius the nearest clear cells start the fill.
   space.fill(world.collision(), world.bounds(), Eigen::Vector3d(0.0, -3.0, 2.5), 1.0);
   EXPECT_TRUE(space.seeded());
+}
+
+namespace {
+
+// The fill as written first: a flood over cellCentreDistance() queries.
+std::vector<uint8_t> referenceFill(const CollisionMap& map, const Eigen::Vector3i& start, double clear) {
+  const Eigen::Vector3i n = map.gridCells();
+  auto at = [&](const Eigen::Vector3i& c) { return static_cast<size_t>((c.x() * n.y() + c.y()) * n.z() + c.z()); };
+  std::vector<uint8_t> in(static_cast<size_t>(n.prod()), 0);
+  auto open = [&](const Eigen::Vector3i& c) {
+    return (c.array() >= 0).all() && (c.array() < n.array()).all() && in[at(c)] == 0 &&
+           map.cellCentreDistance(c) >= clear;
+  };
+  std::vector<Eigen::Vector3i> stack;
+  if (open(start)) {
+    in[at(start)] = 1;
+    stack.push_back(start);
+  }
+  while (!stack.empty()) {
+    const Eigen::Vector3i c = stack.back();
+    stack.pop_back();
+    for (int a = 0; a < 3; ++a) {
+      for (int s = -1; s <= 1; s += 2) {
+        Eigen::Vector3i d = c;
+        d[a] += s;
+        if (!open(d)) continue;
+        in[at(d)] = 1;
+        stack.push_back(d);
+      }
+    }
+  }
+  return in;
+}
+
+}  // namespace
+
+// The fill reads the transform in one pass (CollisionMap::clearCells) and
+// floods a byte per cell: it fills exactly the cells the flood over
+// distance queries does, also at clearances that fall on a cell distance.
+TEST(ReachableSpace, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
+  WallWorld world(true);
+  const CollisionMap& map = world.collision();
+  const Eigen::Vector3d from(-3.0, -3.0, 2.5);
+  const Eigen::Vector3i n = map.gridCells();
+  Eigen::Vector3i start;
+  for (int a = 0; a < 3; ++a) start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
+  const double h = map.cellSize();
+  size_t differing_sizes = 0, previous = 0;
+  for (const double clear : {0.0, 0.5, 1.0, 2.0 * h, std::sqrt(5.0) * h, 3.0 * h, 1.3}) {
+    ReachableSpace space;
+    space.fill(map, world.bounds(), from, clear);
+    ASSERT_TRUE(space.seeded()) << clear;
+    const std::vector<uint8_t> expected = referenceFill(map, start, clear);
+    size_t count = 0, wrong = 0;
+    for (int x = 0; x < n.x(); ++x)
+      for (int y = 0; y < n.y(); ++y)
+        for (int z = 0; z < n.z(); ++z) {
+          const Eigen::Vector3i c(x, y, z);
+          const bool want = expected[static_cast<size_t>((x * n.y() + y) * n.z() + z)] != 0;
+          count += want ? 1 : 0;
+          wrong += space.filled(c) != want ? 1 : 0;
+        }
+    EXPECT_EQ(wrong, 0u) << "clearance " << clear;
+    EXPECT_EQ(space.size(), count) << "clearance " << clear;
+    EXPECT_GT(count, 100u) << clear;
+    differing_sizes += count != previous ? 1 : 0;
+    previous = count;
+  }
+  EXPECT_GE(differing_sizes, 4u);  // the clearances do cut the free space differently
+  std::vector<uint8_t> mask;
+  map.clearCells(std::nan(""), &mask);
+  EXPECT_EQ(mask.size(), static_cast<size_t>(n.prod()));
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 0) << "a NaN clearance clears nothing";
+  map.clearCells(1e12, &mask);
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 0);
+  map.clearCells(-1.0, &mask);
+  EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), n.prod()) << "every cell is at least 0 m clear";
 }

@@ -95,6 +95,10 @@ class CollisionMap {
   // Distance between the centres of `cell` and its nearest obstacle cell [m],
   // as the transform holds it; saturates a little above max_distance.
   double cellCentreDistance(const Eigen::Vector3i& cell) const;
+  // For every cell, whether cellCentreDistance(cell) >= clear (the same
+  // test, read in one pass over the transform): mask[(x * ny + y) * nz + z]
+  // is 1 or 0. Resizes *mask to the grid.
+  void clearCells(double clear, std::vector<uint8_t>* mask) const;
 
   // What the last update() (or rebuild) did: blocks read, cells re-evaluated,
   // cells whose obstacle state changed. A rebuild counts every cell as changed.

@@ -31,21 +31,26 @@ class ReachableSpace {
   // Whether p's cell, or one of its 6 neighbours, was filled (true when the
   // last fill found no seed; false outside the grid).
   bool reachable(const Eigen::Vector3d& p) const;
+  // Whether the last fill reached this cell (false outside the grid).
+  bool filled(const Eigen::Vector3i& cell) const;
   // Cells filled by the last fill.
   size_t size() const { return filled_; }
   bool seeded() const { return seeded_; }
 
  private:
   bool cellOf(const Eigen::Vector3d& p, Eigen::Vector3i* cell) const;
+  // The order of CollisionMap::clearCells: z fastest.
   size_t index(const Eigen::Vector3i& c) const {
-    return static_cast<size_t>(c.x()) +
-           static_cast<size_t>(cells_.x()) * (static_cast<size_t>(c.y()) + static_cast<size_t>(cells_.y()) * c.z());
+    return (static_cast<size_t>(c.x()) * static_cast<size_t>(cells_.y()) + static_cast<size_t>(c.y())) *
+               static_cast<size_t>(cells_.z()) +
+           static_cast<size_t>(c.z());
   }
+  static constexpr uint8_t kOpen = 1, kFilled = 2;  // 0: not clear
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();
   double cell_ = 1.0;
-  std::vector<uint8_t> in_;  // 1: filled
+  std::vector<uint8_t> state_;  // per cell: 0, kOpen or kFilled
   size_t filled_ = 0;
   bool seeded_ = false;
 };
