@@ -135,7 +135,24 @@ TEST(ReachableSpace, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
     previous = count;
   }
   EXPECT_GE(differing_sizes, 4u);  // the clearances do cut the free space differently
+  // The mask itself, also beyond the transform's cap (max_distance).
+  const double kCap = CollisionConfig().max_distance;
   std::vector<uint8_t> mask;
+  for (const double clear : {1.0, kCap - 0.5 * h, kCap,
+                             kCap + 2.0 * h}) {
+    map.clearCells(clear, &mask);
+    ASSERT_EQ(mask.size(), static_cast<size_t>(n.prod()));
+    size_t wrong = 0, passed = 0;
+    for (int x = 0; x < n.x(); ++x)
+      for (int y = 0; y < n.y(); ++y)
+        for (int z = 0; z < n.z(); ++z) {
+          const bool want = map.cellCentreDistance(Eigen::Vector3i(x, y, z)) >= clear;
+          passed += want ? 1 : 0;
+          wrong += (mask[static_cast<size_t>((x * n.y() + y) * n.z() + z)] != 0) != want ? 1 : 0;
+        }
+    EXPECT_EQ(wrong, 0u) << "clearance " << clear;
+    EXPECT_GT(passed, 0u) << "clearance " << clear;
+  }
   map.clearCells(std::nan(""), &mask);
   EXPECT_EQ(mask.size(), static_cast<size_t>(n.prod()));
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 0) << "a NaN clearance clears nothing";
