@@ -1,6 +1,8 @@
 #include "surface_nbv/map/mesh_layer.h"
 
 #include <algorithm>
+#include <exception>
+#include <string>
 
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/util/parallel_for.h"
@@ -54,7 +56,12 @@ void MeshLayer::work() {
     lock.unlock();
     const int layer_threads = integrator_->threads();
     integrator_->setThreads(1);
-    const Status s = integrator_->integrateDepth(frame.camera, frame.depth, frame.T_W_C);
+    Status s;
+    try {  // an exception would end the process here: it becomes the layer's failure
+      s = integrator_->integrateDepth(frame.camera, frame.depth, frame.T_W_C);
+    } catch (const std::exception& e) {
+      s = Status::Error(std::string("mesh layer fusion: ") + e.what());
+    }
     integrator_->setThreads(layer_threads);
     lock.lock();
     if (!s && failure_.ok()) failure_ = s;

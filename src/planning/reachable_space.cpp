@@ -24,6 +24,7 @@ void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, con
   seeded_ = false;
   // kOpen where the cell is clear (one pass over the transform), then the
   // fill turns the connected ones to kFilled.
+  static_assert(kOpen == 1, "clearCells marks a clear cell 1");
   map.clearCells(radius - slack, &state_);
   auto open = [&](const Eigen::Vector3i& c) {
     return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && state_[index(c)] == kOpen;

@@ -66,7 +66,7 @@ class MeshLayer {
   // same order, so it ends voxel for voxel as integrateDepthWith() leaves
   // it. A failure of the layer on an earlier frame goes to *layer when
   // given (the planning map's status is returned), else it is returned
-  // unless the planning map failed. Call finish() before reading map();
+  // unless the planning map failed. Call finish() before map() is read:
   // every other method and the destructor call it first, and report a
   // failure it returns as the layer's (after doing their own work).
   Status integrateDepthBehind(TsdfIntegrator* planning, const DepthCamera& camera, const DepthImage& depth,
