@@ -99,9 +99,6 @@ Status MissionConfig::validate() const {
   if (mesh_layer_queue < 1 || mesh_layer_queue > 4096) {
     return Status::Error("mission/mesh_layer_queue expected in [1, 4096] frames");
   }
-  if (render_ahead < 0 || render_ahead > 256) {
-    return Status::Error("mission/render_ahead expected in [0, 256] frames");
-  }
   if (threads < 1 || threads > 64) return Status::Error("mission/threads expected in [1, 64]");
   return Status::Ok();
 }
@@ -171,7 +168,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("start_spin", &c->start_spin);
   m.get("progress_period", &c->progress_period);
   m.get("mesh_layer_queue", &c->mesh_layer_queue);
-  m.get("render_ahead", &c->render_ahead);
   m.get("threads", &c->threads);
   m.get("seed", &c->seed);
   m.get("collision_radius", &c->path.collision_radius);

@@ -6,7 +6,6 @@
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_integrator.h"
-#include "surface_nbv/mission/render_ahead.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/scripted_flight.h"
@@ -100,10 +99,6 @@ MissionResult MissionRunner::run() {
   const DepthCamera camera(camera_config);
   const DepthRenderer renderer(scene_, camera, c.threads);
   const Transform T_B_C = opticalInBody();
-  // The frames to come are rendered on a thread of their own while the
-  // mission plans (render_ahead.h); one thread renders everything in line.
-  const DepthRenderer ahead_renderer(scene_, camera, 1);
-  RenderAhead ahead(ahead_renderer, c.threads > 1 ? static_cast<size_t>(c.render_ahead) : 0, T_B_C);
   SurfaceConfig surface = c.surface;
   surface.threads = c.threads;
   FrontierBuilder builder(surface);
@@ -152,7 +147,6 @@ MissionResult MissionRunner::run() {
   DepthImage depth;
   Eigen::Vector3d last_p = tracker.state().p_W;
   bool spinning = c.start_spin > 0.0;
-  ahead.plan(tracker, next_frame, frame_dt, 0);
   const auto pathLeft = [&] { return !(c.max_path_length > 0.0) || result.path_length < c.max_path_length; };
   while (tracker.time() < c.max_flight_time && pathLeft()) {
     // Fly to the next frame time.
@@ -169,7 +163,7 @@ MissionResult MissionRunner::run() {
     // Sense.
     const Transform T_W_C = levelBodyPose(state.p_W, state.yaw) * T_B_C;
     const auto t_render = Clock::now();
-    if (!ahead.take(result.frames, T_W_C, &depth)) renderer.render(T_W_C, &depth, result.frames);
+    renderer.render(T_W_C, &depth, result.frames);
     result.times.render += msSince(t_render);
     const auto t_integrate = Clock::now();
     // The mesh layer fuses each frame on a thread of its own while the
@@ -201,10 +195,7 @@ MissionResult MissionRunner::run() {
     }
     if (tracker.time() + 1e-9 < next_frontier && !(leg_finished && explorer.hasTarget())) continue;
 
-    // Map -> collision map -> frontier -> decision. Mid-leg, the next frames
-    // are rendered meanwhile, for the case the UAV keeps its trajectory (at a
-    // leg's end it gets a new one or hovers).
-    if (!leg_finished) ahead.plan(tracker, next_frame, frame_dt, result.frames);
+    // Map -> collision map -> frontier -> decision.
     const auto t_collision = Clock::now();
     collision.update(*map_);
     explorer.mapChanged();
@@ -257,15 +248,10 @@ MissionResult MissionRunner::run() {
     if (d.action == ExplorerAction::kFly) {
       const Trajectory t = legTrajectory(d.path, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
       if (Status s = tracker.setTrajectory(t); !s) tracker.hold();
-      ahead.plan(tracker, next_frame, frame_dt, result.frames);
     } else if (d.action == ExplorerAction::kHover) {
       tracker.hold();
-      ahead.plan(tracker, next_frame, frame_dt, result.frames);
     }
   }
-  const RenderAheadStats ahead_stats = ahead.stats();
-  result.frames_rendered_ahead = ahead_stats.rendered;
-  result.frames_taken_ahead = ahead_stats.taken;
   if (Status s = mesh_layer_->finish(); !s && result.status) {
     result.status = Status::Error("mesh layer integration failed: " + s.message());
   }

@@ -66,7 +66,6 @@ struct TrialRow {
   double plan_ms_max = 0, frontier_ms_max = 0;
   MissionStageTimes times;
   FlightProfile profile;
-  size_t frames_ahead = 0, frames_taken = 0;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
 };
 
@@ -267,8 +266,6 @@ int main(int argc, char** argv) {
     row.times = r.times;
     row.profile = profileFlight(r.flown, r.flown_t, trial_config.speed);
     row.frames = r.frames;
-    row.frames_ahead = r.frames_rendered_ahead;
-    row.frames_taken = r.frames_taken_ahead;
     row.updates = r.frontier_updates;
     row.full = r.explorer.full_recomputes;
     row.local = r.explorer.local_updates;
@@ -332,7 +329,6 @@ int main(int argc, char** argv) {
     json.value("end_reason", r.end_reason).value("path_length_m", r.path_length).value("completion_min", r.flight_min);
     json.value("coverage", r.coverage).value("error_mean_m", r.mean).value("error_std_m", r.std_dev);
     json.value("rmse_m", r.rmse).value("wall_s", r.wall_s).value("frames", r.frames).value("frontier_updates", r.updates);
-    json.value("frames_rendered_ahead", r.frames_ahead).value("frames_taken_ahead", r.frames_taken);
     json.value("full_recomputes", r.full).value("local_updates", r.local).value("legs", r.legs);
     json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
     json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
@@ -382,11 +378,9 @@ int main(int argc, char** argv) {
         "tour / legs / tracker.\n\n";
   for (const TrialRow& r : rows) {
     std::snprintf(line, sizeof(line), "- trial %d: %.0f / %.0f / %.0f / %.0f / %.0f / %.0f / %.0f / %.0f (slowest "
-                  "frontier update %.0f ms, slowest decision %.0f ms; %zu of %zu frames rendered ahead, %zu rendered ahead "
-                  "for nothing); end: %s\n",
+                  "frontier update %.0f ms, slowest decision %.0f ms); end: %s\n",
                   r.trial, r.times.render, r.times.integrate, r.times.collision, r.times.frontier, r.times.graph,
-                  r.times.tour, r.times.path, r.times.tracker, r.frontier_ms_max, r.plan_ms_max, r.frames_taken,
-                  r.frames, r.frames_ahead - r.frames_taken, r.end_reason.c_str());
+                  r.times.tour, r.times.path, r.times.tracker, r.frontier_ms_max, r.plan_ms_max, r.end_reason.c_str());
     md << line;
   }
   md << "\nWhere the flight time goes, per trial: cruise at 88 % of the reference speed or more, moving slower "

@@ -129,30 +129,4 @@ TEST_F(MissionDeterminism, MeshLayerQueueChangesNeitherTheFlightNorTheMaps) {
   EXPECT_EQ(waiting.result.flown, lagging.result.flown);
 }
 
-// The frames rendered ahead on a thread of their own while the mission plans
-// (mission/render_ahead) are used only at the pose they were rendered for:
-// the same flight and maps as rendering every frame in line, with most
-// frames taken from ahead.
-TEST_F(MissionDeterminism, RenderAheadChangesNeitherTheFlightNorTheMaps) {
-  MissionConfig c = config_;
-  c.threads = 2;  // frames are rendered ahead only with two threads or more
-  c.render_ahead = 0;
-  ASSERT_TRUE(c.validate().ok()) << c.validate().message();
-  const MissionRun in_line = run(c, 1);
-  c.render_ahead = 12;
-  const MissionRun ahead = run(c, 1);
-  ASSERT_TRUE(in_line.result.status.ok()) << in_line.result.status.message();
-  ASSERT_TRUE(ahead.result.status.ok()) << ahead.result.status.message();
-  EXPECT_EQ(in_line.result.frames_rendered_ahead, 0u);
-  EXPECT_EQ(in_line.result.frames_taken_ahead, 0u);
-  std::printf("%zu of %zu frames taken from ahead, %zu rendered ahead\n", ahead.result.frames_taken_ahead,
-              ahead.result.frames, ahead.result.frames_rendered_ahead);
-  EXPECT_GT(ahead.result.frames_taken_ahead, ahead.result.frames / 2);
-  EXPECT_GE(ahead.result.frames_rendered_ahead, ahead.result.frames_taken_ahead);
-  EXPECT_EQ(in_line.map_hash, ahead.map_hash);
-  EXPECT_EQ(in_line.mesh_hash, ahead.mesh_hash);
-  expectSameDecisions(in_line.result, ahead.result);
-  EXPECT_EQ(in_line.result.flown, ahead.result.flown);
-}
-
 }  // namespace

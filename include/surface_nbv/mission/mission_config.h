@@ -62,12 +62,6 @@ struct MissionConfig {
   // plans on one. 1 waits for every frame; 64 depth images at 640 x 480 are
   // 79 MB. The maps and the flight are the same either way.
   int mesh_layer_queue = 64;
-  // Depth frames rendered ahead on a thread of their own while the mission
-  // plans, at the poses the UAV reaches if it keeps its trajectory (used
-  // only where the pose is the same bit for bit: render_ahead.h). 0 renders
-  // every frame in line, as threads: 1 does. The maps and the flight are
-  // the same either way.
-  int render_ahead = 12;
   unsigned int seed = 1;           // path sampling and depth noise (per trial: seed + trial)
 
   // Names the first bad key.

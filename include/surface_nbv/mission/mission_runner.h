@@ -49,9 +49,6 @@ struct MissionResult {
   double path_length = 0.0;             // m
   double wall_time = 0.0;               // s
   size_t frames = 0, frontier_updates = 0;
-  // Frames rendered ahead while the mission planned, and those of them it
-  // used (the others were for a trajectory it left); see render_ahead.h.
-  size_t frames_rendered_ahead = 0, frames_taken_ahead = 0;
   ExplorerStats explorer;
   size_t blacklisted = 0;
   size_t final_ises = 0, final_inside = 0;
