@@ -21,10 +21,12 @@ constexpr float kFar = 1e30f;
 
 // One image row: usable depth (+inf clears, NaN carries nothing), the
 // silhouette key, the farthest reach (max range for clearing pixels, kNone for
-// none) and the number of invalid pixels. Branch-free, so it is vectorised.
-float prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
-                 float* key, float* reach) {
-  float bad = 0.0f;  // exact: whole numbers far below 2^24 (a float sum keeps the loop vectorised)
+// none) folded into the column maxima of the row's band of tiles, the nearest
+// measured depth into the column minima when given, and the number of invalid
+// pixels. Branch-free, so it is vectorised.
+int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
+               float* key, float* col_max, float* col_min) {
+  int bad = 0;
   for (int u = 0; u < width; ++u) {
     const float d = in[u];
     const bool ok = (d >= lo) & (d <= hi);  // false for NaN
@@ -32,8 +34,12 @@ float prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear
     const float none = clears ? kInf : kNaN;
     out[u] = ok ? d : none;
     key[u] = ok ? d : kFar;
-    reach[u] = ok ? d : (clears ? hi : kNone);
-    bad += ok ? 0.0f : 1.0f;
+    const float reach = ok ? d : (clears ? hi : kNone);
+    col_max[u] = std::max(col_max[u], reach);
+    bad += ok ? 0 : 1;
+  }
+  if (col_min != nullptr) {
+    for (int u = 0; u < width; ++u) col_min[u] = std::min(col_min[u], out[u]);  // std::min keeps col_min for a NaN
   }
   return bad;
 }
@@ -74,25 +80,25 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
     const int v_end = std::min(H, static_cast<int>(ty + 1) * kTile);
     float* tile_max = &base.max_depth[ty * base.width];
     float* tile_min = nearest ? &base.min_depth[ty * base.width] : nullptr;
-    std::vector<float> reach_row(static_cast<size_t>(W));
-    float* reach = reach_row.data();
+    // Column maxima (and minima) over the band's rows, then one pass over
+    // the tiles: the same maxima and minima as pixel by pixel.
+    std::vector<float> col_max(static_cast<size_t>(W), kNone);
+    std::vector<float> col_min(nearest ? static_cast<size_t>(W) : 0, kInf);
     for (int v = static_cast<int>(ty) * kTile; v < v_end; ++v) {
       const size_t row = static_cast<size_t>(v) * W;
-      const float* in = &depth.data[row];
-      float* out = &usable_[row];
-      float* key = &key_[row];
-      const float bad = prepareRow(in, lo, hi, all, infinite, width, out, key, reach);
-      invalid[ty] += static_cast<size_t>(bad);
-      for (int u0 = 0, tx = 0; u0 < width; u0 += kTile, ++tx) {
-        const int u1 = std::min(width, u0 + kTile);
-        float m = tile_max[tx];
-        for (int u = u0; u < u1; ++u) m = std::max(m, reach[u]);
-        tile_max[tx] = m;
-        if (tile_min == nullptr) continue;
-        float near = tile_min[tx];
-        for (int u = u0; u < u1; ++u) near = std::min(near, out[u]);  // std::min keeps `near` for a NaN
-        tile_min[tx] = near;
-      }
+      invalid[ty] += static_cast<size_t>(prepareRow(&depth.data[row], lo, hi, all, infinite, width, &usable_[row],
+                                                    &key_[row], col_max.data(),
+                                                    nearest ? col_min.data() : nullptr));
+    }
+    for (int u0 = 0, tx = 0; u0 < width; u0 += kTile, ++tx) {
+      const int u1 = std::min(width, u0 + kTile);
+      float m = tile_max[tx];
+      for (int u = u0; u < u1; ++u) m = std::max(m, col_max[u]);
+      tile_max[tx] = m;
+      if (tile_min == nullptr) continue;
+      float near = tile_min[tx];
+      for (int u = u0; u < u1; ++u) near = std::min(near, col_min[u]);
+      tile_min[tx] = near;
     }
   });
   // Pass 2: a pixel is on a silhouette when it differs from one of its four
