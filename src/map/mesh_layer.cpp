@@ -98,14 +98,17 @@ Status MeshLayer::integrateDepthBehind(TsdfIntegrator* planning, const DepthCame
     planned = planning->integrateDepth(camera, depth, T_W_C, stats);
     planning->setThreads(planning_threads);
     if (planned) {
+      DepthImage copy;
       {
         std::lock_guard<std::mutex> lock(mutex_);
-        DepthImage copy;
         if (!spare_.empty()) {
           copy = std::move(spare_.back());
           spare_.pop_back();
         }
-        copy = depth;  // keeps the spare buffer's capacity
+      }
+      copy = depth;  // outside the lock, which the layer's thread takes at every frame's end
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
         frames_.push_back(Frame{camera, std::move(copy), T_W_C});
       }
       if (!worker_.joinable()) worker_ = std::thread(&MeshLayer::work, this);
