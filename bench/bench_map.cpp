@@ -4,7 +4,9 @@
 // setting (30 m range at 0.3, 0.2 and 0.15 m), free space carved. Where
 // Open3D is installed, its ScalableTSDFVolume integrates the same frames side
 // by side (it only updates the truncation band around surfaces).
-// BM_DepthIndexBuild times the image preparation of each frame on its own.
+// BM_DepthIndexBuild times the image preparation of each frame on its own;
+// BM_IntegrateLoop compares the scalar and the AVX2 per-block loops
+// (integrate_kernel.h) on one thread, side by side in one run.
 // Frames are integrated once before timing, so blocks are allocated and the
 // figures are the steady state of a map that already covers the view.
 #include <benchmark/benchmark.h>
@@ -33,7 +35,8 @@ struct Setting {
   double voxel, range, standoff;
 };
 // Indexed by the benchmark's first argument.
-const Setting kSettings[] = {{0.3, 8.0, 3.0}, {0.15, 5.0, 2.0}, {0.3, 30.0, 10.0}, {0.2, 30.0, 10.0}, {0.15, 30.0, 10.0}};
+const Setting kSettings[] = {{0.3, 8.0, 3.0}, {0.15, 5.0, 2.0}, {0.3, 30.0, 10.0}, {0.2, 30.0, 10.0}, {0.15, 30.0, 10.0},
+                             {0.1, 8.0, 3.0}};  // 5: the power plant's mesh layer voxels
 
 struct Frames {
   CameraConfig camera;
@@ -96,6 +99,27 @@ void BM_Integrate(benchmark::State& state) {
   state.counters["bytes_per_voxel"] = static_cast<double>(map.memoryBytes()) / (map.numBlocks() * kBlockVoxels);
 }
 
+// Args: {setting, loop: 0 scalar, 1 AVX2 (scalar without AVX2)}, one thread.
+void BM_IntegrateLoop(benchmark::State& state) {
+  const Setting& s = kSettings[state.range(0)];
+  const Frames& f = framesFor(s);
+  TsdfConfig config;
+  config.voxel_size = s.voxel;
+  config.bounds = f.bounds;
+  config.max_blocks = 4u << 20;
+  TsdfMap map(config);
+  TsdfIntegrator integrator(&map);
+  integrator.setKernelIsa(state.range(1) == 1 ? KernelIsa::kAvx2 : KernelIsa::kScalar);
+  const DepthCamera camera(f.camera);
+  for (size_t i = 0; i < f.poses.size(); ++i) integrator.integrateDepth(camera, f.depths[i], f.poses[i]);
+  size_t i = 0;
+  for (auto _ : state) {
+    integrator.integrateDepth(camera, f.depths[i % f.poses.size()], f.poses[i % f.poses.size()]);
+    ++i;
+  }
+  state.SetLabel(state.range(1) == 1 && bestKernelIsa() == KernelIsa::kAvx2 ? "avx2" : "scalar");
+}
+
 // The per-frame image preparation alone (usable depths, silhouettes, the
 // max-depth pyramid), part of every BM_Integrate frame. Args: {threads}.
 void BM_DepthIndexBuild(benchmark::State& state) {
@@ -152,6 +176,11 @@ void settings(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_Integrate)->Apply(settings);
+BENCHMARK(BM_IntegrateLoop)
+    ->ArgNames({"setting", "avx2"})
+    ->ArgsProduct({{0, 5}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_DepthIndexBuild)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 #ifdef NBV_HAVE_OPEN3D
 BENCHMARK(BM_IntegrateOpen3D)->Apply(settings);

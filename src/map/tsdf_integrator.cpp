@@ -5,6 +5,7 @@
 #include <limits>
 #include <unordered_map>
 
+#include "surface_nbv/map/integrate_kernel.h"
 #include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {
@@ -149,55 +150,42 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   stats.invalid_pixels = index_.build(camera, depth, trunc, cfg.invalid_pixels, threads(), cfg.band_allocation);
   const std::vector<TsdfBlock*> work = candidateBlocks(camera, T_W_C, &stats);
 
-  // Projective update of every voxel of the candidate blocks.
+  // Projective update of every voxel of the candidate blocks (integrate_kernel.h).
   const uint64_t stamp = map_->beginChange();
   const Transform T_C_W = T_W_C.inverse();
   const Eigen::Matrix3f R = T_C_W.linear().cast<float>();
   const float vs = static_cast<float>(cfg.voxel_size);
-  const Eigen::Vector3f ax = R.col(0) * vs, ay = R.col(1) * vs, az = R.col(2) * vs;
-  const float fx = static_cast<float>(camera.fx()), fy = static_cast<float>(camera.fy());
-  const float cx = static_cast<float>(camera.cx()) + 0.5f, cy = static_cast<float>(camera.cy()) + 0.5f;
-  const float max_weight = cfg.max_weight;
-  const float frame_weight = weight_scale_;
+  BlockKernelFrame frame;
+  for (int c = 0; c < 3; ++c) {
+    frame.ax[c] = R(c, 0) * vs;
+    frame.ay[c] = R(c, 1) * vs;
+    frame.az[c] = R(c, 2) * vs;
+  }
+  frame.fx = static_cast<float>(camera.fx());
+  frame.fy = static_cast<float>(camera.fy());
+  frame.cx = static_cast<float>(camera.cx()) + 0.5f;
+  frame.cy = static_cast<float>(camera.cy()) + 0.5f;
+  frame.width = W;
+  frame.height = H;
+  frame.far = far;
+  frame.max_range = max_range;
+  frame.truncation = trunc;
+  frame.frame_weight = weight_scale_;
+  frame.max_weight = cfg.max_weight;
   const Dropoff dropoff(cfg);
-  const float* usable = index_.usableData();
-  const uint8_t* silhouette = index_.silhouetteData();
+  frame.dropoff = dropoff.on;
+  frame.dropoff_start = dropoff.start;
+  frame.dropoff_scale = dropoff.scale;
+  frame.usable = index_.usableData();
+  frame.silhouette = index_.silhouetteData();
+  const KernelIsa isa = kernel_isa_;
   std::vector<size_t> updated(work.size(), 0);
   parallelFor(work.size(), threads(), [&](size_t bi) {
     TsdfBlock* b = work[bi];
     const Eigen::Vector3d c0 = cfg.bounds.min + (b->index.cast<double>() * kBlockSize) * cfg.voxel_size +
                                Eigen::Vector3d::Constant(0.5 * cfg.voxel_size);
     const Eigen::Vector3f p0 = (T_C_W * c0).cast<float>();
-    size_t n = 0;
-    for (int k = 0; k < kBlockSize; ++k) {
-      for (int j = 0; j < kBlockSize; ++j) {
-        const Eigen::Vector3f row = p0 + az * static_cast<float>(k) + ay * static_cast<float>(j);
-        TsdfVoxel* vox = &b->at(0, j, k);
-        for (int i = 0; i < kBlockSize; ++i) {
-          const Eigen::Vector3f p = row + ax * static_cast<float>(i);
-          const float z = p.z();
-          if (!(z > 1e-3f) || z > far) continue;
-          const float inv_z = 1.0f / z;
-          const float uf = fx * p.x() * inv_z + cx, vf = fy * p.y() * inv_z + cy;
-          if (!(uf >= 0.0f && uf < W && vf >= 0.0f && vf < H)) continue;
-          const size_t pixel = static_cast<size_t>(vf) * W + static_cast<size_t>(uf);
-          const float d = usable[pixel];
-          float sdf, weight = frame_weight * inv_z * inv_z;
-          if (std::isinf(d)) {
-            if (z > max_range) continue;
-            sdf = trunc;
-          } else {
-            sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
-            if (!(sdf >= -trunc) || (sdf < 0.0f && silhouette[pixel])) continue;
-            sdf = std::min(sdf, trunc);
-            weight *= dropoff.share(sdf);
-            if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
-          }
-          updateVoxel(&vox[i], sdf, weight, max_weight);
-          ++n;
-        }
-      }
-    }
+    const size_t n = integrateBlock(frame, p0.data(), b, isa);
     if (n > 0) b->change_stamp = stamp;
     updated[bi] = n;
   });

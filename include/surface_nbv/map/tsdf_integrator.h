@@ -24,6 +24,7 @@
 
 #include "surface_nbv/common.h"
 #include "surface_nbv/map/depth_index.h"
+#include "surface_nbv/map/integrate_kernel.h"
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/depth_image.h"
@@ -72,6 +73,10 @@ class TsdfIntegrator {
   // Threads of the next integrations; 0 (the default) = the map's config.threads.
   void setThreads(int threads) { threads_ = threads > 0 ? threads : 0; }
   int threads() const { return threads_ > 0 ? threads_ : map_->config().threads; }
+  // The per-block loop of depth images (integrate_kernel.h): the best this CPU
+  // has by default; kScalar for comparisons. Both give the same voxels.
+  void setKernelIsa(KernelIsa isa) { kernel_isa_ = isa; }
+  KernelIsa kernelIsa() const { return kernel_isa_; }
 
  private:
   // Blocks that can be in view and not hidden behind surfaces, allocated.
@@ -81,6 +86,7 @@ class TsdfIntegrator {
   DepthIndex index_;
   float weight_scale_ = 1.0f;
   int threads_ = 0;
+  KernelIsa kernel_isa_ = bestKernelIsa();
 };
 
 }  // namespace surface_nbv
