@@ -51,40 +51,72 @@ DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camer
   for (int row = 0; row < camera_.height(); ++row) ray_y_.push_back(camera_.pixelRay(0, row).y());
 }
 
+void DepthRenderer::frameRays(const Transform& T_W_C, FrameRays* rays) const {
+  const Eigen::Matrix3d R = T_W_C.linear();
+  rays->origin = T_W_C.translation().cast<float>();
+  rays->r02 = R(0, 2);
+  rays->r12 = R(1, 2);
+  const int width = camera_.width(), height = camera_.height();
+  const int cols = (width + kRowsPerTask - 1) / kRowsPerTask * kRowsPerTask;
+  const int rows = (height + kRowsPerTask - 1) / kRowsPerTask * kRowsPerTask;
+  rays->col_x.resize(cols), rays->col_y.resize(cols), rays->col_z.resize(cols);
+  rays->row_x.resize(rows), rays->row_y.resize(rows), rays->row_z.resize(rows);
+  for (int col = 0; col < cols; ++col) {
+    const double x = ray_x_[std::min(col, width - 1)];
+    rays->col_x[col] = R(0, 0) * x;
+    rays->col_y[col] = R(1, 0) * x;
+    rays->col_z[col] = R(2, 0) * x;
+  }
+  for (int row = 0; row < rows; ++row) {
+    const double y = ray_y_[std::min(row, height - 1)];
+    rays->row_x[row] = R(0, 1) * y;
+    rays->row_y[row] = R(1, 1) * y;
+    rays->row_z[row] = R(2, 1) * y + R(2, 2);
+  }
+}
+
 void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t frame_index) const {
   image->resize(camera_.width(), camera_.height());
   const int height = camera_.height();
+  FrameRays rays;
+  frameRays(T_W_C, &rays);
   if (threads_ == 1) {
-    renderRows(T_W_C, 0, height, frame_index, image);
+    renderRows(rays, 0, height, frame_index, image);
     return;
   }
   const size_t bands = static_cast<size_t>((height + kRowsPerTask - 1) / kRowsPerTask);
   parallelFor(bands, threads_, [&](size_t band) {
     const int row = static_cast<int>(band) * kRowsPerTask;
-    renderRows(T_W_C, row, std::min(height, row + kRowsPerTask), frame_index, image);
+    renderRows(rays, row, std::min(height, row + kRowsPerTask), frame_index, image);
   });
 }
 
-void DepthRenderer::renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,
+void DepthRenderer::renderRows(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index,
                                DepthImage* image) const {
   if (packet_width_ == 16) {
-    renderTiles<RTCRayHit16, 4, 4>(T_W_C, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit16, 4, 4>(rays, row_begin, row_end, frame_index, image);
   } else if (packet_width_ == 8) {
-    renderTiles<RTCRayHit8, 4, 2>(T_W_C, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit8, 4, 2>(rays, row_begin, row_end, frame_index, image);
   } else {
-    renderTiles<RTCRayHit4, 2, 2>(T_W_C, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit4, 2, 2>(rays, row_begin, row_end, frame_index, image);
   }
 }
 
+// The ray of pixel (col, row) is R (x_col, y_row, 1), its z at unit depth, so
+// a hit's t is the depth. Rows 0 and 1 of R * Vector3d(x, y, 1) are summed
+// as (R0 x + R1 y) + R2 and row 2 as R0 x + (R1 y + R2), as Eigen sums them,
+// so these images are those of the product (test
+// DepthRenderer.RaysAreTheRotatedPixelRays).
 template <typename Packet, int TileW, int TileH>
-void DepthRenderer::renderTiles(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index,
+void DepthRenderer::renderTiles(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index,
                                 DepthImage* image) const {
+  static_assert(kRowsPerTask % TileW == 0 && kRowsPerTask % TileH == 0, "frame rays are padded to whole tiles");
   const CameraConfig& cfg = camera_.config();
-  const Eigen::Matrix3d R = T_W_C.linear();
-  const Eigen::Vector3d o = T_W_C.translation();
   const float min_z = static_cast<float>(cfg.min_range);
   const float max_z = static_cast<float>(cfg.max_range);
   const int width = camera_.width();
+  const bool noisy = cfg.noise_k > 0.0;
+  constexpr float kInf = std::numeric_limits<float>::infinity();
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -92,43 +124,46 @@ void DepthRenderer::renderTiles(const Transform& T_W_C, int row_begin, int row_e
   alignas(64) int valid[TileW * TileH];
 
   for (int k = 0; k < TileW * TileH; ++k) {
-    packet.ray.org_x[k] = static_cast<float>(o.x());
-    packet.ray.org_y[k] = static_cast<float>(o.y());
-    packet.ray.org_z[k] = static_cast<float>(o.z());
+    packet.ray.org_x[k] = rays.origin.x();
+    packet.ray.org_y[k] = rays.origin.y();
+    packet.ray.org_z[k] = rays.origin.z();
     packet.ray.id[k] = static_cast<unsigned>(k);
+    packet.ray.tnear[k] = 0.0f;
+    packet.ray.time[k] = 0.0f;
+    packet.ray.mask[k] = 0xFFFFFFFFu;
+    packet.ray.flags[k] = 0;
   }
+  // Embree writes only tfar and the hit of a packet's rays.
   for (int row0 = row_begin; row0 < row_end; row0 += TileH) {
     for (int col0 = 0; col0 < width; col0 += TileW) {
-      for (int k = 0; k < TileW * TileH; ++k) {
-        const int row = row0 + k / TileW, col = col0 + k % TileW;
-        valid[k] = row < row_end && col < width ? -1 : 0;
-        const Eigen::Vector3d d =
-            R * Eigen::Vector3d(ray_x_[std::min(col, width - 1)], ray_y_[std::min(row, row_end - 1)], 1.0);
-        packet.ray.dir_x[k] = static_cast<float>(d.x());
-        packet.ray.dir_y[k] = static_cast<float>(d.y());
-        packet.ray.dir_z[k] = static_cast<float>(d.z());
-        packet.ray.tnear[k] = 0.0f;
-        packet.ray.tfar[k] = max_z;
-        packet.ray.time[k] = 0.0f;
-        packet.ray.mask[k] = 0xFFFFFFFFu;
-        packet.ray.flags[k] = 0;
-        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      for (int tr = 0; tr < TileH; ++tr) {
+        const int row = row0 + tr;
+        const double rx = rays.row_x[row], ry = rays.row_y[row], rz = rays.row_z[row];
+        for (int tc = 0; tc < TileW; ++tc) {
+          const int k = tr * TileW + tc, col = col0 + tc;
+          valid[k] = row < row_end && col < width ? -1 : 0;
+          packet.ray.dir_x[k] = static_cast<float>((rays.col_x[col] + rx) + rays.r02);
+          packet.ray.dir_y[k] = static_cast<float>((rays.col_y[col] + ry) + rays.r12);
+          packet.ray.dir_z[k] = static_cast<float>(rays.col_z[col] + rz);
+          packet.ray.tfar[k] = max_z;
+          packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        }
       }
       intersect(valid, scene_.handle(), &context, &packet);
-      for (int k = 0; k < TileW * TileH; ++k) {
-        if (!valid[k]) continue;
-        const int row = row0 + k / TileW, col = col0 + k % TileW;
-        // REP 117: +Inf = no return within max range, -Inf = too close.
-        float z = std::numeric_limits<float>::infinity();
-        if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
-          z = packet.ray.tfar[k];
-          if (cfg.noise_k > 0.0) {
-            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index, static_cast<uint64_t>(row) * width + col);
+      // REP 117: +Inf = no return within max range, -Inf = too close. Selects,
+      // not branches: hits and misses mix unpredictably along a tile.
+      for (int tr = 0; tr < TileH && row0 + tr < row_end; ++tr) {
+        float* out = &image->at(row0 + tr, col0);
+        for (int tc = 0; tc < TileW && col0 + tc < width; ++tc) {
+          const int k = tr * TileW + tc;
+          float z = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? packet.ray.tfar[k] : kInf;
+          if (noisy && z != kInf) {
+            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index,
+                           static_cast<uint64_t>(row0 + tr) * width + col0 + tc);
           }
-          if (z < min_z) z = -std::numeric_limits<float>::infinity();
-          else if (!(z <= max_z)) z = std::numeric_limits<float>::infinity();
+          z = z < min_z ? -kInf : z;
+          out[tc] = z <= max_z ? z : kInf;  // NaN too
         }
-        image->at(row, col) = z;
       }
     }
   }

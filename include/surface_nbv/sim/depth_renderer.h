@@ -36,9 +36,19 @@ class DepthRenderer {
   int packetWidth() const { return packet_width_; }
 
  private:
-  void renderRows(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
+  // One frame's rays, R (x_col, y_row, 1) in the world, from products formed
+  // once per frame: a column's R(:,0) x_col and a row's R(:,1) y_row, summed
+  // as Eigen sums R * Vector3d(x, y, 1) (depth_renderer.cpp).
+  struct FrameRays {
+    Eigen::Vector3f origin;
+    double r02 = 0.0, r12 = 0.0;
+    std::vector<double> col_x, col_y, col_z;  // padded to whole tiles
+    std::vector<double> row_x, row_y, row_z;  // row_z includes R(2,2)
+  };
+  void frameRays(const Transform& T_W_C, FrameRays* rays) const;
+  void renderRows(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
   template <typename Packet, int TileW, int TileH>
-  void renderTiles(const Transform& T_W_C, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
+  void renderTiles(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
 
   const RaycastScene& scene_;
   DepthCamera camera_;
