@@ -4,8 +4,8 @@
 // setting (30 m range at 0.3, 0.2 and 0.15 m), free space carved. Where
 // Open3D is installed, its ScalableTSDFVolume integrates the same frames side
 // by side (it only updates the truncation band around surfaces).
-// BM_DepthIndexBuild times the image preparation of each frame on its own;
-// BM_IntegrateLoop compares the scalar and the AVX2 per-block loops
+// BM_DepthIndexBuild times the image preparation of each frame on its own,
+// and BM_IntegrateLoop compares the scalar and the AVX2 per-block loops
 // (integrate_kernel.h) on one thread, side by side in one run.
 // Frames are integrated once before timing, so blocks are allocated and the
 // figures are the steady state of a map that already covers the view.
@@ -74,17 +74,18 @@ const Frames& framesFor(const Setting& s) {
   return *slot;
 }
 
-// Args: {setting, threads}.
-void BM_Integrate(benchmark::State& state) {
-  const Setting& s = kSettings[state.range(0)];
+// Integrates the setting's frames once (the steady state), then one frame
+// per iteration with `threads` and the voxel loop `isa`.
+void integrateFrames(benchmark::State& state, const Setting& s, int threads, KernelIsa isa) {
   const Frames& f = framesFor(s);
   TsdfConfig config;
   config.voxel_size = s.voxel;
   config.bounds = f.bounds;
-  config.threads = static_cast<int>(state.range(1));
+  config.threads = threads;
   config.max_blocks = 4u << 20;
   TsdfMap map(config);
   TsdfIntegrator integrator(&map);
+  integrator.setKernelIsa(isa);
   const DepthCamera camera(f.camera);
   for (size_t i = 0; i < f.poses.size(); ++i) integrator.integrateDepth(camera, f.depths[i], f.poses[i]);
   size_t i = 0, voxels = 0;
@@ -99,25 +100,16 @@ void BM_Integrate(benchmark::State& state) {
   state.counters["bytes_per_voxel"] = static_cast<double>(map.memoryBytes()) / (map.numBlocks() * kBlockVoxels);
 }
 
+// Args: {setting, threads}.
+void BM_Integrate(benchmark::State& state) {
+  integrateFrames(state, kSettings[state.range(0)], static_cast<int>(state.range(1)), bestKernelIsa());
+}
+
 // Args: {setting, loop: 0 scalar, 1 AVX2 (scalar without AVX2)}, one thread.
 void BM_IntegrateLoop(benchmark::State& state) {
-  const Setting& s = kSettings[state.range(0)];
-  const Frames& f = framesFor(s);
-  TsdfConfig config;
-  config.voxel_size = s.voxel;
-  config.bounds = f.bounds;
-  config.max_blocks = 4u << 20;
-  TsdfMap map(config);
-  TsdfIntegrator integrator(&map);
-  integrator.setKernelIsa(state.range(1) == 1 ? KernelIsa::kAvx2 : KernelIsa::kScalar);
-  const DepthCamera camera(f.camera);
-  for (size_t i = 0; i < f.poses.size(); ++i) integrator.integrateDepth(camera, f.depths[i], f.poses[i]);
-  size_t i = 0;
-  for (auto _ : state) {
-    integrator.integrateDepth(camera, f.depths[i % f.poses.size()], f.poses[i % f.poses.size()]);
-    ++i;
-  }
-  state.SetLabel(state.range(1) == 1 && bestKernelIsa() == KernelIsa::kAvx2 ? "avx2" : "scalar");
+  const bool avx2 = state.range(1) == 1 && bestKernelIsa() == KernelIsa::kAvx2;
+  integrateFrames(state, kSettings[state.range(0)], 1, avx2 ? KernelIsa::kAvx2 : KernelIsa::kScalar);
+  state.SetLabel(avx2 ? "avx2" : "scalar");
 }
 
 // The per-frame image preparation alone (usable depths, silhouettes, the
