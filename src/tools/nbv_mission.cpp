@@ -25,6 +25,7 @@
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/eval/report_writer.h"
 #include "surface_nbv/eval/surface_sampler.h"
+#include "surface_nbv/map/integrate_kernel.h"
 #include "surface_nbv/map/map_io.h"
 #include "surface_nbv/map/mesh_extractor.h"
 #include "surface_nbv/mission/flight_csv.h"
@@ -176,6 +177,10 @@ int main(int argc, char** argv) {
   std::printf("scene '%s': %zu triangles, %.0f m^2; config %s; voxel %.2f m; %d trial(s) from seed %d\n",
               config.scene.scene.c_str(), mesh.numTriangles(), mesh.area(),
               config_file.empty() ? "(defaults)" : config_file.c_str(), config.tsdf.voxel_size, trials, seed);
+  // What the wall times depend on besides the host: they differ with these.
+  const int packet_rays = scene->nativePacketWidth();
+  const char* voxel_loop = bestKernelIsa() == KernelIsa::kAvx2 ? "avx2" : "scalar";
+  std::printf("compute: %d thread(s), %d-ray render packets, %s voxel loop\n", config.threads, packet_rays, voxel_loop);
   // Probe points for the running coverage: 0.5 m apart on the true surface.
   SurfaceCloud probe_cloud;
   SurfaceSampler(0.5, 7, config.threads).sample(mesh, 2000000, &probe_cloud);
@@ -317,6 +322,7 @@ int main(int argc, char** argv) {
   JsonWriter json;
   json.beginObject().value("scene", config.scene.scene).value("config", config_file).value("trials", trials);
   json.value("seed", seed).value("voxel_size_m", config.tsdf.voxel_size).value("e_max_m", eval.config.eMax());
+  json.value("threads", config.threads).value("render_packet_rays", packet_rays).value("voxel_loop", voxel_loop);
   json.beginObject("summary");
   for (Stat& s : stats) {
     double m, sd;
@@ -355,7 +361,8 @@ int main(int argc, char** argv) {
   std::ofstream md(out_dir + "/report.md");
   md << "# Mission on `" << config.scene.scene << "` (" << trials << " trial(s), seeds " << seed << ".."
      << seed + trials - 1 << ")\n\nConfig: `" << config_file << "`, voxel " << config.tsdf.voxel_size
-     << " m, e_max " << 100.0 * eval.config.eMax() << " cm.\n\n"
+     << " m, e_max " << 100.0 * eval.config.eMax() << " cm. Compute: " << config.threads << " thread(s), "
+     << packet_rays << "-ray render packets, " << voxel_loop << " voxel loop.\n\n"
      << "| trial | seed | completed | path [m] | time [min] | coverage [%] | mean [cm] | std [cm] | RMSE [cm] | "
         "wall [s] | frontier updates | full / local | legs / failures | blacklisted |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";

@@ -251,6 +251,7 @@ TEST_F(NbvRefuse, FusesTheOraclesFlight) {
 // nbv_mission --coverage-every 20 on the box: a row every 20 s of flight and
 // one at the end, in coverage.csv and the reports; the last is the trial's
 // coverage, and nbv_refuse on the flight up to a checkpoint gives its figure.
+// The reports name the threads, render packets and voxel loop.
 TEST_F(NbvRefuse, MissionCoverageOverTime) {
   ASSERT_TRUE(fs::exists(exe_)) << exe_;
   const fs::path out = dir_ / "mission";
@@ -281,6 +282,15 @@ TEST_F(NbvRefuse, MissionCoverageOverTime) {
   EXPECT_NEAR(rows.back()[2], jsonNumber(trial, "coverage"), 1e-9);
   EXPECT_LT(rows.front()[2], rows.back()[2]);
   EXPECT_NE(json.find("\"coverage_over_time\": ["), std::string::npos);
+  // What the wall time depends on is in the reports: one thread (--threads 1),
+  // the renderer's packet width and the voxel loop.
+  EXPECT_EQ(jsonNumber(json, "threads"), 1.0);
+  const double packet = jsonNumber(json, "render_packet_rays");
+  EXPECT_TRUE(packet == 4 || packet == 8 || packet == 16) << packet;
+  EXPECT_TRUE(json.find("\"voxel_loop\": \"avx2\"") != std::string::npos ||
+              json.find("\"voxel_loop\": \"scalar\"") != std::string::npos)
+      << json;
+  EXPECT_NE(readText(out / "report.md").find("Compute: 1 thread(s), "), std::string::npos);
   EXPECT_NE(readText(out / "report.md").find("Coverage over flight time"), std::string::npos);
   // The flight up to the second checkpoint, fused again: the same coverage.
   std::ifstream flight(out / "trial_0" / "path.csv");
