@@ -152,7 +152,10 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
 
 KernelIsa bestKernelIsa() {
 #ifdef SURFACE_NBV_X86
-  static const KernelIsa isa = __builtin_cpu_supports("avx2") ? KernelIsa::kAvx2 : KernelIsa::kScalar;
+  static const KernelIsa isa = [] {
+    __builtin_cpu_init();  // needed when the first call comes from a static constructor
+    return __builtin_cpu_supports("avx2") ? KernelIsa::kAvx2 : KernelIsa::kScalar;
+  }();
   return isa;
 #else
   return KernelIsa::kScalar;
