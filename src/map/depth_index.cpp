@@ -23,8 +23,14 @@ constexpr float kFar = 1e30f;
 // silhouette key, the farthest reach (max range for clearing pixels, kNone for
 // none) folded into the column maxima of the row's band of tiles, the nearest
 // measured depth into the column minima when given, and the number of invalid
-// pixels. Branch-free, so it is vectorised.
-int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
+// pixels. Branch-free, so it is vectorised: for AVX2 too where the CPU has it
+// (compares, max and min only, so both versions give the same bits).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define SURFACE_NBV_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define SURFACE_NBV_AVX2_CLONES
+#endif
+SURFACE_NBV_AVX2_CLONES int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
                float* key, float* col_max, float* col_min) {
   int bad = 0;
   for (int u = 0; u < width; ++u) {
@@ -42,6 +48,22 @@ int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_i
     for (int u = 0; u < width; ++u) col_min[u] = std::min(col_min[u], out[u]);  // std::min keeps col_min for a NaN
   }
   return bad;
+}
+
+// One row of silhouette flags: |key - a 4-neighbour's key| > t, the image
+// border comparing a pixel with itself. Subtractions, abs and max only.
+SURFACE_NBV_AVX2_CLONES void silhouetteRow(const float* __restrict k, const float* __restrict up,
+                                           const float* __restrict down, float t, int width,
+                                           uint8_t* __restrict s) {
+  const auto differs = [&](int u, int left, int right) {
+    const float c = k[u];
+    const float m = std::max(std::max(std::abs(c - k[left]), std::abs(c - k[right])),
+                             std::max(std::abs(c - up[u]), std::abs(c - down[u])));
+    return static_cast<uint8_t>(m > t);
+  };
+  for (int u = 1; u < width - 1; ++u) s[u] = differs(u, u - 1, u + 1);  // vectorised: no index choices inside
+  s[0] = differs(0, 0, std::min(1, width - 1));
+  if (width > 1) s[width - 1] = differs(width - 1, width - 2, width - 1);
 }
 
 }  // namespace
@@ -108,21 +130,10 @@ size_t DepthIndex::build(const DepthCamera& camera, const DepthImage& depth, flo
   // Each row is written by one task only.
   parallelFor(static_cast<size_t>(H), threads, [&](size_t r) {
     const int v = static_cast<int>(r);
-    const float t = truncation;
-    const int width = W;
     const float* k = &key_[static_cast<size_t>(v) * W];
     const float* up = v > 0 ? k - W : k;  // the image border compares a pixel with itself
     const float* down = v + 1 < H ? k + W : k;
-    uint8_t* s = &silhouette_[static_cast<size_t>(v) * W];
-    const auto differs = [&](int u, int left, int right) {
-      const float c = k[u];
-      const float m = std::max(std::max(std::abs(c - k[left]), std::abs(c - k[right])),
-                               std::max(std::abs(c - up[u]), std::abs(c - down[u])));
-      return static_cast<uint8_t>(m > t);
-    };
-    for (int u = 1; u < width - 1; ++u) s[u] = differs(u, u - 1, u + 1);  // vectorised: no index choices inside
-    s[0] = differs(0, 0, std::min(1, W - 1));
-    if (W > 1) s[W - 1] = differs(W - 1, W - 2, W - 1);
+    silhouetteRow(k, up, down, truncation, W, &silhouette_[static_cast<size_t>(v) * W]);
   });
   // Pyramids: each level halves the previous one with max (and min).
   size_t k = 1;
