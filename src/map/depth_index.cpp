@@ -30,8 +30,8 @@ constexpr float kFar = 1e30f;
 #else
 #define SURFACE_NBV_AVX2_CLONES
 #endif
-SURFACE_NBV_AVX2_CLONES int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf, int width, float* out,
-               float* key, float* col_max, float* col_min) {
+SURFACE_NBV_AVX2_CLONES int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf,
+                                       int width, float* out, float* key, float* col_max, float* col_min) {
   int bad = 0;
   for (int u = 0; u < width; ++u) {
     const float d = in[u];

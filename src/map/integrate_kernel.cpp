@@ -43,13 +43,10 @@ size_t integrateBlockScalar(const BlockKernelFrame& f, const float p0[3], TsdfBl
           sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
           if (!(sdf >= -t) || (sdf < 0.0f && f.silhouette[pixel])) continue;
           sdf = std::min(sdf, t);
-          weight *= f.dropoff && sdf < -f.dropoff_start ? (t + sdf) * f.dropoff_scale : 1.0f;
+          weight *= f.dropoff.share(sdf);
           if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
         }
-        TsdfVoxel& v = vox[i];
-        const float w = v.w + weight;
-        v.phi = (v.phi * v.w + sdf * weight) / w;
-        v.w = f.max_weight > 0.0f ? std::min(w, f.max_weight) : w;
+        updateVoxel(&vox[i], sdf, weight, f.max_weight);
         ++n;
       }
     }
@@ -75,8 +72,9 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
                cy = _mm256_set1_ps(f.cy);
   const __m256 t = _mm256_set1_ps(f.truncation), minus_t = _mm256_set1_ps(-f.truncation);
   const __m256 frame_weight = _mm256_set1_ps(f.frame_weight), max_weight = _mm256_set1_ps(f.max_weight);
-  const __m256 drop_below = _mm256_set1_ps(f.dropoff ? -f.dropoff_start : -INFINITY);
-  const __m256 drop_scale = _mm256_set1_ps(f.dropoff_scale);
+  // WeightDropoff::share: (trunc + sdf) scale below -start when on.
+  const __m256 drop_below = _mm256_set1_ps(f.dropoff.on ? -f.dropoff.start : -INFINITY);
+  const __m256 drop_trunc = _mm256_set1_ps(f.dropoff.trunc), drop_scale = _mm256_set1_ps(f.dropoff.scale);
   const __m256 inf = _mm256_set1_ps(INFINITY);
   const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
   const __m256i width = _mm256_set1_epi32(f.width);
@@ -117,7 +115,7 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
         m_fin = _mm256_and_ps(m_fin, _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(keep))));
       }
       const __m256 sdf_fin = _mm256_min_ps(t, sdf_raw);
-      const __m256 share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(t, sdf_fin), drop_scale),
+      const __m256 share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(drop_trunc, sdf_fin), drop_scale),
                                             _mm256_cmp_ps(sdf_fin, drop_below, _CMP_LT_OQ));
       const __m256 weight_fin = _mm256_mul_ps(weight, share);
       m_fin = _mm256_and_ps(m_fin, _mm256_cmp_ps(weight_fin, zero, _CMP_GT_OQ));
@@ -149,6 +147,13 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
 #endif
 
 }  // namespace
+
+WeightDropoff::WeightDropoff(const TsdfConfig& c)
+    : on(c.weight_dropoff),
+      start(static_cast<float>(c.voxel_size)),
+      trunc(static_cast<float>(c.truncationDistance())),
+      scale(c.truncationDistance() > c.voxel_size ? static_cast<float>(1.0 / (c.truncationDistance() - c.voxel_size))
+                                                  : 0.0f) {}
 
 KernelIsa bestKernelIsa() {
 #ifdef SURFACE_NBV_X86

@@ -11,27 +11,6 @@
 namespace surface_nbv {
 namespace {
 
-// The share of an update's weight kept with TsdfConfig::weight_dropoff: 1
-// down to sdf = -voxel_size, then falling linearly to 0 at -truncation.
-struct Dropoff {
-  bool on = false;
-  float start = 0.0f, trunc = 0.0f, scale = 0.0f;
-
-  explicit Dropoff(const TsdfConfig& c)
-      : on(c.weight_dropoff),
-        start(static_cast<float>(c.voxel_size)),
-        trunc(static_cast<float>(c.truncationDistance())),
-        scale(c.truncationDistance() > c.voxel_size ? static_cast<float>(1.0 / (c.truncationDistance() - c.voxel_size))
-                                                    : 0.0f) {}
-  float share(float sdf) const { return on && sdf < -start ? (trunc + sdf) * scale : 1.0f; }
-};
-
-void updateVoxel(TsdfVoxel* v, float sdf, float weight, float max_weight) {
-  const float w = v->w + weight;
-  v->phi = (v->phi * v->w + sdf * weight) / w;
-  v->w = max_weight > 0.0f ? std::min(w, max_weight) : w;
-}
-
 // A side plane of the frustum through the camera centre: inside where
 // (n . p) >= 0, with n normalised.
 struct SidePlane {
@@ -172,10 +151,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   frame.truncation = trunc;
   frame.frame_weight = weight_scale_;
   frame.max_weight = cfg.max_weight;
-  const Dropoff dropoff(cfg);
-  frame.dropoff = dropoff.on;
-  frame.dropoff_start = dropoff.start;
-  frame.dropoff_scale = dropoff.scale;
+  frame.dropoff = WeightDropoff(cfg);
   frame.usable = index_.usableData();
   frame.silhouette = index_.silhouetteData();
   const KernelIsa isa = kernel_isa_;
@@ -251,7 +227,7 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     }
   }
   const uint64_t stamp = map_->beginChange();
-  const Dropoff dropoff(cfg);
+  const WeightDropoff dropoff(cfg);
   for (const auto& kv : touched) {
     const int64_t k = kv.first;
     const Eigen::Vector3i v(static_cast<int>(k % grid.x()), static_cast<int>((k / grid.x()) % grid.y()),

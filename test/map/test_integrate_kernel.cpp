@@ -61,9 +61,10 @@ struct RandomFrame {
     frame.far = frame.max_range + frame.truncation;
     frame.frame_weight = 1.5f;
     frame.max_weight = max_weight;
-    frame.dropoff = dropoff;
-    frame.dropoff_start = voxel;
-    frame.dropoff_scale = 1.0f / (frame.truncation - voxel);
+    frame.dropoff.on = dropoff;
+    frame.dropoff.start = voxel;
+    frame.dropoff.trunc = frame.truncation;
+    frame.dropoff.scale = 1.0f / (frame.truncation - voxel);
     frame.usable = usable.data();
     frame.silhouette = silhouette.data();
   }

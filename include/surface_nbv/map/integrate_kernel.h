@@ -10,12 +10,33 @@
 // same order, and a flight does not depend on the CPU it runs on.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
+#include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/map/tsdf_map.h"
 
 namespace surface_nbv {
+
+// The share of an update's weight kept with TsdfConfig::weight_dropoff: 1
+// down to sdf = -start (one voxel), then falling linearly to 0 at -trunc.
+struct WeightDropoff {
+  bool on = false;
+  float start = 0.0f, trunc = 0.0f, scale = 0.0f;
+
+  WeightDropoff() = default;
+  explicit WeightDropoff(const TsdfConfig& c);
+  float share(float sdf) const { return on && sdf < -start ? (trunc + sdf) * scale : 1.0f; }
+};
+
+// A voxel's update by one measurement: phi the weighted running average, w
+// the sum of the weights, capped at max_weight when that is > 0.
+inline void updateVoxel(TsdfVoxel* v, float sdf, float weight, float max_weight) {
+  const float w = v->w + weight;
+  v->phi = (v->phi * v->w + sdf * weight) / w;
+  v->w = max_weight > 0.0f ? std::min(w, max_weight) : w;
+}
 
 // What every block of one frame shares. Positions are in the camera's
 // optical frame (z forward), in metres.
@@ -29,8 +50,7 @@ struct BlockKernelFrame {
   float truncation = 0;
   float frame_weight = 1;  // times 1 / z^2
   float max_weight = 0;    // <= 0: no cap
-  bool dropoff = false;    // TsdfConfig::weight_dropoff
-  float dropoff_start = 0, dropoff_scale = 0;
+  WeightDropoff dropoff;   // of the same config: its trunc is `truncation`
   const float* usable = nullptr;       // DepthIndex::usableData()
   const uint8_t* silhouette = nullptr;  // DepthIndex::silhouetteData()
 };
