@@ -141,7 +141,6 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   nbv.get("d_nu", &c->surface.d_nu);
   nbv.get("d_nu_max", &c->surface.d_nu_max);
   nbv.get("approach_range_fraction", &c->surface.approach_range_fraction);
-  nbv.get("yaw_lead", &c->surface.yaw_lead);
   nbv.get("lambda_tc", &c->explorer.graph.lambda_tc);
   nbv.get("lambda_ic", &c->explorer.graph.lambda_ic);
   if (!cam.status()) return Status::Error(file + ": " + cam.status().message());

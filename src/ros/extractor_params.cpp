@@ -55,7 +55,6 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   shared.get("d_nu", &s.d_nu);
   shared.get("d_nu_max", &s.d_nu_max);
   shared.get("approach_range_fraction", &s.approach_range_fraction);
-  shared.get("yaw_lead", &s.yaw_lead);
   readCameraConfig(&shared, &s.camera);
   shared.checkUnknown("camera");
   if (Status st = shared.status(); !st) return st;

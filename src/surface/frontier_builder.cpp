@@ -5,10 +5,7 @@
 #include <iterator>
 #include <cmath>
 
-#include <Eigen/Geometry>
-
 #include "surface_nbv/surface/chunked_for.h"
-#include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
 namespace {
@@ -37,74 +34,27 @@ void addApproachSources(const std::vector<Ise>& ises, std::vector<Viewpoint>* vi
 
 }  // namespace
 
-namespace {
-
-// The 9 x 6 rays of a viewpoint's view to max range: visit(target voxel)
-// for each, in row order.
-template <typename Visit>
-void forEachViewRay(const VoxelStateGrid& grid, const Viewpoint& viewpoint, const CameraConfig& camera, Visit&& visit) {
+double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera) {
   constexpr int kColumns = 9, kRows = 6;
+  const VoxelStateGrid& grid = rays.grid();
   const Transform T_W_C = viewpoint.cameraPose();
   const double tx = std::tan(0.5 * camera.hfov_deg * M_PI / 180.0), ty = std::tan(0.5 * camera.vfov_deg * M_PI / 180.0);
   const Eigen::Vector3i last = grid.gridVoxels() - Eigen::Vector3i::Ones();
+  uint64_t entered = 0, unknown = 0, steps = 0;
   for (int r = 0; r < kRows; ++r)
     for (int c = 0; c < kColumns; ++c) {
       const Eigen::Vector3d d_C(tx * (2.0 * (c + 0.5) / kColumns - 1.0), ty * (2.0 * (r + 0.5) / kRows - 1.0), 1.0);
       const Eigen::Vector3d end = T_W_C * (camera.max_range * d_C);
       Eigen::Vector3i target = ((end - grid.origin()) / grid.voxelSize()).array().floor().cast<int>();
-      visit(Eigen::Vector3i(target.cwiseMax(Eigen::Vector3i::Zero()).cwiseMin(last)));
+      target = target.cwiseMax(Eigen::Vector3i::Zero()).cwiseMin(last);
+      rays.walk(viewpoint.position, target, &steps, [&](size_t i) {
+        const uint8_t state = grid.data()[i];
+        if (state & VoxelStateGrid::kOccupied) return false;
+        ++entered;
+        unknown += (state & VoxelStateGrid::kUnknown) ? 1 : 0;
+        return true;
+      });
     }
-}
-
-// How many of the view's rays meet an unknown voxel before an occupied one.
-int raysMeetingUnknown(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera) {
-  const VoxelStateGrid& grid = rays.grid();
-  uint64_t steps = 0;
-  int met = 0;
-  forEachViewRay(grid, viewpoint, camera, [&](const Eigen::Vector3i& target) {
-    bool unknown = false;
-    rays.walk(viewpoint.position, target, &steps, [&](size_t i) {
-      const uint8_t state = grid.data()[i];
-      unknown = (state & VoxelStateGrid::kUnknown) != 0;
-      return !unknown && (state & VoxelStateGrid::kOccupied) == 0;
-    });
-    met += unknown ? 1 : 0;
-  });
-  return met;
-}
-
-// yaw_lead: the yaw of {yaw - lead, yaw, yaw + lead} whose rays meet the
-// most unknown space; eq. 2's yaw unless a turn gains at least 3 rays of 54.
-void leadYaw(const VoxelRayCaster& rays, const CameraConfig& camera, double lead, Viewpoint* viewpoint) {
-  constexpr int kMinGain = 3;
-  int best = raysMeetingUnknown(rays, *viewpoint, camera) + kMinGain - 1;
-  double best_turn = 0.0;
-  Viewpoint turned = *viewpoint;
-  for (double turn : {-lead, lead}) {
-    turned.yaw = viewpoint->yaw + turn;
-    const int met = raysMeetingUnknown(rays, turned, camera);
-    if (met > best) best = met, best_turn = turn;
-  }
-  if (best_turn == 0.0) return;
-  viewpoint->yaw = wrapAngle(viewpoint->yaw + best_turn);
-  const Eigen::AngleAxisd turn(best_turn, Eigen::Vector3d::UnitZ());
-  viewpoint->view_direction = turn * viewpoint->view_direction;
-}
-
-}  // namespace
-
-double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera) {
-  const VoxelStateGrid& grid = rays.grid();
-  uint64_t entered = 0, unknown = 0, steps = 0;
-  forEachViewRay(grid, viewpoint, camera, [&](const Eigen::Vector3i& target) {
-    rays.walk(viewpoint.position, target, &steps, [&](size_t i) {
-      const uint8_t state = grid.data()[i];
-      if (state & VoxelStateGrid::kOccupied) return false;
-      ++entered;
-      unknown += (state & VoxelStateGrid::kUnknown) ? 1 : 0;
-      return true;
-    });
-  });
   return entered > 0 ? static_cast<double>(unknown) / static_cast<double>(entered) : 1.0;
 }
 
@@ -176,11 +126,6 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
   std::vector<int> group_of;
   out.viewpoints = merger_.merge(accepted, collision, bounds, &group_of);
   for (size_t k = 0; k < accepted_ise.size(); ++k) out.ises[accepted_ise[k]].viewpoint = group_of[k];
-  if (config_.yaw_lead > 0.0) {
-    parallelForChunked(out.viewpoints.size(), config_.threads, 16, [&](size_t i) {
-      leadYaw(loose, config_.camera, config_.yaw_lead, &out.viewpoints[i]);
-    });
-  }
   const Clock::time_point t3 = Clock::now();
 
   stats.voxel_steps = visibility_.evaluate(rays, out.ises, &out.viewpoints);

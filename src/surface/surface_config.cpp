@@ -20,7 +20,6 @@ Status SurfaceConfig::validate() const {
   for (double f : fallback_distance_fractions) {
     if (!finite(f) || f <= 0.0 || f >= 1.0) return Status::Error("fallback_distance_fractions expected values in (0, 1)");
   }
-  if (!finite(yaw_lead) || yaw_lead < 0.0 || yaw_lead > 0.7) return Status::Error("yaw_lead expected in [0, 0.7] rad");
   if (!finite(approach_range_fraction) || approach_range_fraction < 0.0 || approach_range_fraction > 1.0) {
     return Status::Error("approach_range_fraction expected in [0, 1]");
   }

@@ -28,11 +28,6 @@ struct SurfaceConfig {
   // observes the unknown space in between, so the ISE is not left in C_rem
   // before anyone looked. 0 turns approach poses off.
   double approach_range_fraction = 0.0;
-  // Leading yaw [rad]: after merging, each viewpoint may turn its yaw by
-  // +-yaw_lead when more of its rays then meet unknown space within range
-  // (the surface beyond the contour its ISEs lie on), so the view adds more
-  // unseen surface than one centred on the contour. 0: eq. 2's yaw.
-  double yaw_lead = 0.0;
   // Evaluate Viewpoint::unknown_fraction (54 rays per viewpoint).
   bool unknown_fraction = true;
   // The ISE of a viewpoint must lie this far inside the vertical FOV edges
