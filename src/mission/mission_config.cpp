@@ -81,6 +81,12 @@ Status MissionConfig::validate() const {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!positive(speed) || speed > 5.0) return Status::Error("mission/speed expected in (0, 5] m/s");
   if (!positive(yaw_rate) || yaw_rate > 5.0) return Status::Error("mission/yaw_rate expected in (0, 5] rad/s");
+  // The legs are timed at speed and yaw_rate: a reference the tracker
+  // cannot follow would leave the UAV behind it on every turn.
+  if (speed > tracker.mpc.v_max) return Status::Error("mission/speed expected <= tracker/v_max (the UAV's limit per axis)");
+  if (yaw_rate > tracker.mpc.yaw_rate_max) {
+    return Status::Error("mission/yaw_rate expected <= tracker/yaw_rate_max (the UAV's limit)");
+  }
   if (!positive(frame_rate) || frame_rate > 100.0) return Status::Error("mission/frame_rate expected in (0, 100] Hz");
   if (!positive(frontier_period)) return Status::Error("mission/frontier_period expected > 0");
   if (!(leg_lookahead >= 0.0) || leg_lookahead > 60.0) return Status::Error("mission/leg_lookahead expected in [0, 60] s");
@@ -153,6 +159,20 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   sim.getVector("crop_min", &c->scene.transform.crop.min);
   sim.getVector("crop_max", &c->scene.transform.crop.max);
   if (!sim.status()) return Status::Error(file + ": " + sim.status().message());
+
+  // The simulated UAV's limits, the keys mpc_tracker reads (its MPC keeps
+  // the model's limits, as the node's does).
+  YamlSection trk(root["tracker"], "tracker");
+  trk.get("drag", &c->tracker.model.drag);
+  trk.get("v_max", &c->tracker.model.v_max);
+  trk.get("a_max", &c->tracker.model.a_max);
+  trk.get("yaw_rate_max", &c->tracker.model.yaw_rate_max);
+  trk.get("jerk_max", &c->tracker.mpc.jerk_max);
+  trk.refuseUnknown();
+  if (!trk.status()) return Status::Error(file + ": " + trk.status().message());
+  c->tracker.mpc.v_max = c->tracker.model.v_max;
+  c->tracker.mpc.a_max = c->tracker.model.a_max;
+  c->tracker.mpc.yaw_rate_max = c->tracker.model.yaw_rate_max;
 
   YamlSection m(root["mission"], "mission");
   m.getVector4("start", &c->start);

@@ -29,10 +29,18 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   r.get("sim_dt", &c->sim.sim_dt);
   r.get("control_period", &c->sim.control_period);
   r.get("max_start_distance", &c->sim.max_start_distance);
-  r.get("drag", &c->sim.model.drag);
-  r.get("v_max", &c->sim.model.v_max);
-  r.get("a_max", &c->sim.model.a_max);
-  r.get("yaw_rate_max", &c->sim.model.yaw_rate_max);
+  std::string tracker_namespace = "/tracker";
+  r.get("tracker_namespace", &tracker_namespace);
+  ParamReader shared((ros::NodeHandle(tracker_namespace)));
+  for (ParamReader* reader : {&shared, &r}) {
+    reader->get("drag", &c->sim.model.drag);
+    reader->get("v_max", &c->sim.model.v_max);
+    reader->get("a_max", &c->sim.model.a_max);
+    reader->get("yaw_rate_max", &c->sim.model.yaw_rate_max);
+    reader->get("jerk_max", &c->sim.mpc.jerk_max);
+  }
+  shared.checkUnknown();
+  if (Status s = shared.status(); !s) return s;
   c->sim.mpc.v_max = c->sim.model.v_max;
   c->sim.mpc.a_max = c->sim.model.a_max;
   c->sim.mpc.yaw_rate_max = c->sim.model.yaw_rate_max;
@@ -42,7 +50,6 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   r.get("q_velocity", &c->sim.mpc.q_velocity);
   r.get("q_yaw", &c->sim.mpc.q_yaw);
   r.get("r_acceleration", &c->sim.mpc.r_acceleration);
-  r.get("jerk_max", &c->sim.mpc.jerk_max);
   // The mission's take-off pose, mission/start = [x, y, z, yaw] (the key
   // nbv_mission reads), unless ~initial_position / ~initial_yaw are given.
   std::vector<double> start;

@@ -120,6 +120,33 @@ TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   EXPECT_NE(c.validate().message().find("mission/start"), std::string::npos);
 }
 
+// The tracker section sets the simulated UAV's limits for the model and its
+// MPC alike, and the legs' reference may not ask for more than they allow.
+TEST(MissionConfig, TrackerLimitsBoundTheLegsReference) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(writeTemp("yaw2.yaml", "tracker:\n  yaw_rate_max: 2.0\n  v_max: 0.8\n"
+                                                       "mission:\n  yaw_rate: 2.0\n"), &c).ok());
+  EXPECT_DOUBLE_EQ(c.tracker.model.yaw_rate_max, 2.0);
+  EXPECT_DOUBLE_EQ(c.tracker.mpc.yaw_rate_max, 2.0);
+  EXPECT_DOUBLE_EQ(c.tracker.model.v_max, 0.8);
+  EXPECT_DOUBLE_EQ(c.tracker.mpc.v_max, 0.8);
+  EXPECT_DOUBLE_EQ(c.tracker.mpc.a_max, c.tracker.model.a_max);
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("fast_yaw.yaml", "mission:\n  yaw_rate: 2.0\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("mission/yaw_rate expected <= tracker/yaw_rate_max"), std::string::npos)
+      << c.validate().message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("fast.yaml", "tracker:\n  v_max: 0.4\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("mission/speed expected <= tracker/v_max"), std::string::npos)
+      << c.validate().message();
+  Status s = loadMissionConfig(writeTemp("tracker_typo.yaml", "tracker:\n  yaw_rate: 2.0\n"), &c);
+  EXPECT_NE(s.message().find("tracker/yaw_rate is not a known key"), std::string::npos) << s.message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("slow.yaml", "tracker:\n  a_max: -1\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("a_max"), std::string::npos) << c.validate().message();
+}
+
 TEST(MissionConfig, ReadsTheTruncationDistanceAndRefusesOneBelowAVoxel) {
   MissionConfig c;
   ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());

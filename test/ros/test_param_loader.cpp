@@ -8,6 +8,7 @@
 
 #include "surface_nbv/ros/extractor_params.h"
 #include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/ros/mpc_tracker_server.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/scripted_flight_server.h"
 #include "surface_nbv/ros/sim_params.h"
@@ -350,6 +351,33 @@ TEST(ParamLoader, ExtractorTakesTheMissionFrontierPeriodUnlessItsOwnIsSet) {
   bad = load("/period4", &c);
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find("frontier_period"), std::string::npos) << bad.message();
+}
+
+// mpc_tracker: the UAV's limits from the config's tracker section (shared
+// with nbv_mission), the node's own values over them, misspelt keys refused.
+TEST(ParamLoader, TrackerLimitsFromTheTrackerSectionThenThePrivateOnes) {
+  const std::string n = std::to_string(counter++);
+  const std::string priv = "/case" + n + "/mpc_tracker", shared = "/case" + n + "/tracker";
+  ros::param::set(priv + "/tracker_namespace", shared);
+  ros::param::set(shared + "/yaw_rate_max", 2.0);
+  ros::param::set(shared + "/v_max", 0.8);
+  ros::param::set(priv + "/v_max", 0.6);
+  TrackerNodeConfig c;
+  Status s = loadTrackerParams(ros::NodeHandle(priv), &c);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(c.sim.model.yaw_rate_max, 2.0);
+  EXPECT_DOUBLE_EQ(c.sim.mpc.yaw_rate_max, 2.0);
+  EXPECT_DOUBLE_EQ(c.sim.model.v_max, 0.6);
+  EXPECT_DOUBLE_EQ(c.sim.mpc.v_max, 0.6);
+  ros::param::set(shared + "/yaw_rate", 2.0);
+  c = TrackerNodeConfig();
+  s = loadTrackerParams(ros::NodeHandle(priv), &c);
+  EXPECT_NE(s.message().find(shared + "/yaw_rate is not a parameter"), std::string::npos) << s.message();
+  ros::param::del(shared + "/yaw_rate");
+  ros::param::set(shared + "/a_max", -1.0);
+  c = TrackerNodeConfig();
+  s = loadTrackerParams(ros::NodeHandle(priv), &c);
+  EXPECT_NE(s.message().find("a_max"), std::string::npos) << s.message();
 }
 
 int main(int argc, char** argv) {

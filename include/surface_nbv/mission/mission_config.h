@@ -37,11 +37,13 @@ struct MissionConfig {
   // may plan differently. For exact repeats set mission/path_iterations
   // (roadmap samples per leg, e.g. 20000), as test_mission does.
   PathPlannerConfig path;
+  // The simulated UAV (YAML section `tracker`: drag, v_max, a_max,
+  // yaw_rate_max, jerk_max; the MPC's limits are the model's).
   TrackerSimConfig tracker;
 
   Eigen::Vector4d start{0.0, 0.0, 2.0, 0.0};  // [x, y, z, yaw] at take-off
   double speed = 0.5;              // reference speed [m/s] (the paper's)
-  double yaw_rate = 1.0;           // reference yaw rate [rad/s] (the tracker's limit)
+  double yaw_rate = 1.0;           // reference yaw rate [rad/s], at most the tracker's limit
   double frame_rate = 5.0;         // depth frames integrated per flight second
   double frontier_period = 4.0;    // flight seconds between frontier updates on a leg
   // A leg ends (and the next is planned) once its reference has less than

@@ -34,6 +34,9 @@ struct TrackerNodeConfig {
   Status validate() const;
 };
 
+// The UAV's limits (drag, v_max, a_max, yaw_rate_max, jerk_max) come from the
+// config's `tracker` section (~tracker_namespace, "/tracker" by default: the
+// section nbv_mission reads), then from the node's own parameters, which win.
 Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* config);
 
 // Converts a trajectory message to absolute times on the simulated clock
