@@ -101,6 +101,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   int lattice_nodes = static_cast<int>(c->path.lattice_max_nodes);
   mission.get("path_lattice_nodes", &lattice_nodes);
   c->path.lattice_max_nodes = lattice_nodes > 0 ? static_cast<size_t>(lattice_nodes) : 0;
+  mission.get("speed", &c->speed);
+  mission.get("yaw_rate", &c->yaw_rate);
   mission.get("leg_lookahead", &c->leg_lookahead);
   mission.get("leg_yaw_tolerance", &c->leg_yaw_tolerance);
   mission.get("max_flight_time", &c->max_flight_time);

@@ -211,6 +211,27 @@ static Status loadExtractor(const std::string& base, ExtractorConfig* config) {
   return loadExtractorParams(ros::NodeHandle(base + "/ise_extractor"), config);
 }
 
+// The legs' timing (speed, yaw rate) comes from the mission section, as
+// nbv_mission's does, and the node's own parameters win.
+TEST(ParamLoader, PlannerTimesLegsWithTheMissionSpeedAndYawRate) {
+  PlannerNodeConfig config;
+  ASSERT_TRUE(loadPlanner("/timing0", &config).ok());
+  EXPECT_DOUBLE_EQ(config.speed, 0.5);
+  ros::param::set("/timing1/mission/speed", 0.7);
+  ros::param::set("/timing1/mission/yaw_rate", 0.8);
+  config = PlannerNodeConfig();
+  Status s = loadPlanner("/timing1", &config);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(config.speed, 0.7);
+  EXPECT_DOUBLE_EQ(config.yaw_rate, 0.8);
+  ros::param::set("/timing2/mission/speed", 0.7);
+  ros::param::set("/timing2/nbv_planner/speed", 0.3);
+  config = PlannerNodeConfig();
+  s = loadPlanner("/timing2", &config);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_DOUBLE_EQ(config.speed, 0.3);
+}
+
 // The tour objective comes from the YAML's mission section like the other
 // explorer keys, a private parameter overrides it, and an unknown one stops
 // the node naming the key.

@@ -50,8 +50,9 @@ struct PlannerNodeConfig {
   // leg ended (ROS time): the wall-clock timer alone left the UAV idle for up
   // to 1 / replan_rate wall seconds (2 s of flight at 4x) after every leg.
   bool prompt_ticks = true;
+  // mission/speed and mission/yaw_rate (nbv_mission's keys), or the node's own.
   double speed = 0.5;             // m/s: reference speed of planner/trajectory
-  double yaw_rate = 1.0;          // rad/s: reference yaw rate (turns in place are timed by it; the tracker's limit)
+  double yaw_rate = 1.0;          // rad/s: reference yaw rate (turns in place are timed by it), <= the UAV's limit
   double trajectory_spacing = 0.5;  // m between trajectory points along the path
   bool start_running = false;     // true: RUNNING from the start, else waits for ~start
   double start_spin = 6.2832;     // rad turned in place at the first start, before the first plan
