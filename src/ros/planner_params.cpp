@@ -144,6 +144,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
+  std::string tracker_namespace = "/tracker";
+  reader.get("tracker_namespace", &tracker_namespace);
   reader.checkUnknown();
   if (Status st = reader.status(); !st) return st;
 
@@ -154,6 +156,16 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   readCameraConfig(&shared, &c->explorer.gaze.camera);  // the gaze looks with the shared camera
   if (Status st = shared.status(); !st) return st;
   if (Status st = c->validate(); !st) return Status::Error(priv.getNamespace() + "/" + st.message());
+  // With the simulated UAV's limits on the server (the config's tracker
+  // section), legs timed faster than it can fly are refused, as nbv_mission
+  // refuses them; a stack without that section is not checked.
+  double limit = 0.0;
+  if (ros::param::get(tracker_namespace + "/v_max", limit) && c->speed > limit) {
+    return Status::Error(priv.getNamespace() + "/speed expected <= " + tracker_namespace + "/v_max");
+  }
+  if (ros::param::get(tracker_namespace + "/yaw_rate_max", limit) && c->yaw_rate > limit) {
+    return Status::Error(priv.getNamespace() + "/yaw_rate expected <= " + tracker_namespace + "/yaw_rate_max");
+  }
   return Status::Ok();
 }
 

@@ -230,6 +230,23 @@ TEST(ParamLoader, PlannerTimesLegsWithTheMissionSpeedAndYawRate) {
   s = loadPlanner("/timing2", &config);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_DOUBLE_EQ(config.speed, 0.3);
+  // Faster than the simulated UAV's limits (the config's tracker section): refused.
+  ros::param::set("/timing3/nbv_planner/tracker_namespace", std::string("/timing3/tracker"));
+  ros::param::set("/timing3/tracker/yaw_rate_max", 1.0);
+  ros::param::set("/timing3/mission/yaw_rate", 2.0);
+  config = PlannerNodeConfig();
+  s = loadPlanner("/timing3", &config);
+  EXPECT_NE(s.message().find("yaw_rate expected <= /timing3/tracker/yaw_rate_max"), std::string::npos)
+      << s.message();
+  ros::param::set("/timing3/tracker/yaw_rate_max", 2.0);
+  ros::param::set("/timing3/tracker/v_max", 0.4);
+  config = PlannerNodeConfig();
+  s = loadPlanner("/timing3", &config);
+  EXPECT_NE(s.message().find("speed expected <= /timing3/tracker/v_max"), std::string::npos) << s.message();
+  ros::param::set("/timing3/tracker/v_max", 1.0);
+  config = PlannerNodeConfig();
+  s = loadPlanner("/timing3", &config);
+  EXPECT_TRUE(s.ok()) << s.message();
 }
 
 // The tour objective comes from the YAML's mission section like the other
