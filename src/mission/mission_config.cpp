@@ -170,9 +170,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   trk.get("jerk_max", &c->tracker.mpc.jerk_max);
   trk.refuseUnknown();
   if (!trk.status()) return Status::Error(file + ": " + trk.status().message());
-  c->tracker.mpc.v_max = c->tracker.model.v_max;
-  c->tracker.mpc.a_max = c->tracker.model.a_max;
-  c->tracker.mpc.yaw_rate_max = c->tracker.model.yaw_rate_max;
+  c->tracker.mpcUsesModelLimits();
 
   YamlSection m(root["mission"], "mission");
   m.getVector4("start", &c->start);

@@ -41,9 +41,7 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   }
   shared.checkUnknown();
   if (Status s = shared.status(); !s) return s;
-  c->sim.mpc.v_max = c->sim.model.v_max;
-  c->sim.mpc.a_max = c->sim.model.a_max;
-  c->sim.mpc.yaw_rate_max = c->sim.model.yaw_rate_max;
+  c->sim.mpcUsesModelLimits();
   r.get("horizon", &c->sim.mpc.horizon);
   r.get("mpc_dt", &c->sim.mpc.dt);
   r.get("q_position", &c->sim.mpc.q_position);

@@ -23,6 +23,13 @@ struct TrackerSimConfig {
   UavModelConfig model;
   MpcConfig mpc;
 
+  // The MPC plans with the model's limits (v_max, a_max, yaw_rate_max): what
+  // nbv_mission and mpc_tracker do after reading the model's.
+  void mpcUsesModelLimits() {
+    mpc.v_max = model.v_max;
+    mpc.a_max = model.a_max;
+    mpc.yaw_rate_max = model.yaw_rate_max;
+  }
   // Names the first bad key; also refuses MPC limits above the model's.
   Status validate() const;
 };
