@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "surface_nbv/util/parallel_for.h"
+#include "surface_nbv/util/simd.h"
 
 namespace surface_nbv {
 namespace {
@@ -25,11 +26,6 @@ constexpr float kFar = 1e30f;
 // measured depth into the column minima when given, and the number of invalid
 // pixels. Branch-free, so it is vectorised: for AVX2 too where the CPU has it
 // (compares, max and min only, so both versions give the same bits).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define SURFACE_NBV_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define SURFACE_NBV_AVX2_CLONES
-#endif
 SURFACE_NBV_AVX2_CLONES int prepareRow(const float* in, float lo, float hi, bool clear_all, bool clear_inf,
                                        int width, float* out, float* key, float* col_max, float* col_min) {
   int bad = 0;

@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#define SURFACE_NBV_X86 1
-#endif
+#include "surface_nbv/util/simd.h"
 
 namespace surface_nbv {
 namespace {
@@ -19,7 +16,7 @@ inline void rowStart(const BlockKernelFrame& f, const float p0[3], int j, int k,
 
 size_t integrateBlockScalar(const BlockKernelFrame& f, const float p0[3], TsdfBlock* block) {
   const float W = static_cast<float>(f.width), H = static_cast<float>(f.height);
-  const float t = f.truncation;
+  const float t = f.dropoff.trunc;
   size_t n = 0;
   for (int k = 0; k < kBlockSize; ++k) {
     for (int j = 0; j < kBlockSize; ++j) {
@@ -70,11 +67,11 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
   const __m256 W = _mm256_set1_ps(static_cast<float>(f.width)), H = _mm256_set1_ps(static_cast<float>(f.height));
   const __m256 fx = _mm256_set1_ps(f.fx), fy = _mm256_set1_ps(f.fy), cx = _mm256_set1_ps(f.cx),
                cy = _mm256_set1_ps(f.cy);
-  const __m256 t = _mm256_set1_ps(f.truncation), minus_t = _mm256_set1_ps(-f.truncation);
+  const __m256 t = _mm256_set1_ps(f.dropoff.trunc), minus_t = _mm256_set1_ps(-f.dropoff.trunc);
   const __m256 frame_weight = _mm256_set1_ps(f.frame_weight), max_weight = _mm256_set1_ps(f.max_weight);
   // WeightDropoff::share: (trunc + sdf) scale below -start when on.
   const __m256 drop_below = _mm256_set1_ps(f.dropoff.on ? -f.dropoff.start : -INFINITY);
-  const __m256 drop_trunc = _mm256_set1_ps(f.dropoff.trunc), drop_scale = _mm256_set1_ps(f.dropoff.scale);
+  const __m256 drop_scale = _mm256_set1_ps(f.dropoff.scale);
   const __m256 inf = _mm256_set1_ps(INFINITY);
   const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
   const __m256i width = _mm256_set1_epi32(f.width);
@@ -115,7 +112,7 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
         m_fin = _mm256_and_ps(m_fin, _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(keep))));
       }
       const __m256 sdf_fin = _mm256_min_ps(t, sdf_raw);
-      const __m256 share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(drop_trunc, sdf_fin), drop_scale),
+      const __m256 share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(t, sdf_fin), drop_scale),
                                             _mm256_cmp_ps(sdf_fin, drop_below, _CMP_LT_OQ));
       const __m256 weight_fin = _mm256_mul_ps(weight, share);
       m_fin = _mm256_and_ps(m_fin, _mm256_cmp_ps(weight_fin, zero, _CMP_GT_OQ));

@@ -148,7 +148,6 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   frame.height = H;
   frame.far = far;
   frame.max_range = max_range;
-  frame.truncation = trunc;
   frame.frame_weight = weight_scale_;
   frame.max_weight = cfg.max_weight;
   frame.dropoff = WeightDropoff(cfg);

@@ -29,7 +29,7 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   r.get("sim_dt", &c->sim.sim_dt);
   r.get("control_period", &c->sim.control_period);
   r.get("max_start_distance", &c->sim.max_start_distance);
-  std::string tracker_namespace = "/tracker";
+  std::string tracker_namespace = kTrackerNamespace;
   r.get("tracker_namespace", &tracker_namespace);
   ParamReader shared((ros::NodeHandle(tracker_namespace)));
   for (ParamReader* reader : {&shared, &r}) {

@@ -144,7 +144,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
-  std::string tracker_namespace = "/tracker";
+  std::string tracker_namespace = kTrackerNamespace;
   reader.get("tracker_namespace", &tracker_namespace);
   reader.checkUnknown();
   if (Status st = reader.status(); !st) return st;

@@ -56,15 +56,14 @@ struct RandomFrame {
     frame.cy = 0.5f * H;
     frame.width = W;
     frame.height = H;
-    frame.truncation = 0.3f;
+    frame.dropoff.trunc = 0.3f;
     frame.max_range = 4.0f;
-    frame.far = frame.max_range + frame.truncation;
+    frame.far = frame.max_range + frame.dropoff.trunc;
     frame.frame_weight = 1.5f;
     frame.max_weight = max_weight;
     frame.dropoff.on = dropoff;
     frame.dropoff.start = voxel;
-    frame.dropoff.trunc = frame.truncation;
-    frame.dropoff.scale = 1.0f / (frame.truncation - voxel);
+    frame.dropoff.scale = 1.0f / (frame.dropoff.trunc - voxel);
     frame.usable = usable.data();
     frame.silhouette = silhouette.data();
   }
@@ -123,7 +122,7 @@ TEST(IntegrateKernel, BothLoopsGiveTheHandWorkedUpdate) {
   f.fx = f.fy = 4.0f;
   f.cx = f.cy = 4.0f;
   f.width = f.height = 8;
-  f.truncation = 0.3f;
+  f.dropoff.trunc = 0.3f;
   f.max_range = 5.0f;
   f.far = 5.3f;
   f.frame_weight = 1.0f;

@@ -19,8 +19,9 @@
 
 namespace surface_nbv {
 
-// The share of an update's weight kept with TsdfConfig::weight_dropoff: 1
-// down to sdf = -start (one voxel), then falling linearly to 0 at -trunc.
+// The truncation band `trunc` and the share of an update's weight kept with
+// TsdfConfig::weight_dropoff: 1 down to sdf = -start (one voxel), then
+// falling linearly to 0 at -trunc.
 struct WeightDropoff {
   bool on = false;
   float start = 0.0f, trunc = 0.0f, scale = 0.0f;
@@ -47,10 +48,9 @@ struct BlockKernelFrame {
   int width = 0, height = 0;
   float far = 0;          // max range plus truncation: voxels beyond are not looked at
   float max_range = 0;    // "free up to max range" (+inf) pixels carve up to here
-  float truncation = 0;
   float frame_weight = 1;  // times 1 / z^2
   float max_weight = 0;    // <= 0: no cap
-  WeightDropoff dropoff;   // of the same config: its trunc is `truncation`
+  WeightDropoff dropoff;   // the truncation band and, when on, the drop-off
   const float* usable = nullptr;       // DepthIndex::usableData()
   const uint8_t* silhouette = nullptr;  // DepthIndex::silhouetteData()
 };

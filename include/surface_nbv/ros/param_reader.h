@@ -15,6 +15,10 @@
 
 namespace surface_nbv {
 
+// Where the configs' `tracker:` section (the simulated UAV's limits) lives by
+// default; mpc_tracker and nbv_planner read it (~tracker_namespace).
+inline constexpr char kTrackerNamespace[] = "/tracker";
+
 class ParamReader {
  public:
   explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}
