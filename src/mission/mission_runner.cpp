@@ -6,6 +6,7 @@
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_integrator.h"
+#include "surface_nbv/mission/oracle_gain.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/scripted_flight.h"
@@ -58,21 +59,8 @@ const TsdfMap& MissionRunner::meshMap() const { return mesh_layer_ ? mesh_layer_
 
 double MissionRunner::observedFraction() const {
   if (probe_.empty() || !map_) return -1.0;
-  const float band = static_cast<float>(map_->voxelSize());
-  const float w_th = map_->config().w_th;
   size_t seen = 0;
-  for (const Eigen::Vector3d& p : probe_) {
-    Eigen::Vector3i v;
-    if (!map_->voxelIndex(p, &v)) continue;
-    bool hit = false;
-    for (int dz = -1; dz <= 1 && !hit; ++dz)
-      for (int dy = -1; dy <= 1 && !hit; ++dy)
-        for (int dx = -1; dx <= 1 && !hit; ++dx) {
-          const TsdfVoxel* voxel = map_->voxel(v + Eigen::Vector3i(dx, dy, dz));
-          hit = voxel != nullptr && voxel->w >= w_th && std::abs(voxel->phi) <= band;
-        }
-    seen += hit ? 1 : 0;
-  }
+  for (const Eigen::Vector3d& p : probe_) seen += surfaceObserved(*map_, p) ? 1 : 0;
   return static_cast<double>(seen) / probe_.size();
 }
 
@@ -105,6 +93,15 @@ MissionResult MissionRunner::run() {
   PathPlannerConfig path = c.path;
   path.seed = c.seed;
   Explorer explorer(c.explorer, path);
+  std::unique_ptr<OracleGain> oracle;
+  bool oracle_stale = true;  // the map changed since the oracle's last update
+  if (oracle_gain_ && !probe_.empty()) {
+    oracle = std::make_unique<OracleGain>(scene_, camera_config, probe_);
+    explorer.setHeadGain([&](const Eigen::Vector4d& q) {
+      if (oracle_stale) oracle->update(*map_), oracle_stale = false;
+      return (*oracle)(q);
+    });
+  }
 
   if (c.start_free_radius > 0.0) {
     Status s = integrator.markFree(c.start.head<3>(), c.start_free_radius);
@@ -199,6 +196,7 @@ MissionResult MissionRunner::run() {
     const auto t_collision = Clock::now();
     collision.update(*map_);
     explorer.mapChanged();
+    oracle_stale = true;
     result.times.collision += msSince(t_collision);
     const auto t_frontier = Clock::now();
     if (Status s = builder.update(*map_, collision, &frontier); !s) {

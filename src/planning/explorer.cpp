@@ -48,6 +48,7 @@ Status ExplorerConfig::validate() const {
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
+  if (!std::isfinite(head_lambda)) return Status::Error("head_lambda expected finite");
   if (gaze.enabled) {
     if (!travel_yaw) return Status::Error("gaze expects travel_yaw (it turns the yaws travel_yaw sets)");
     if (Status s = gaze.validate(); !s) return s;
@@ -294,10 +295,11 @@ void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
   const size_t n = std::min(tour_.size(), static_cast<size_t>(std::max(config_.head_lookahead, 0)));
   size_t best = 0;
   double best_utility = -1.0;
+  const double lambda = config_.head_lambda >= 0.0 ? config_.head_lambda : config_.graph.lambda_tc;
   for (size_t i = 0; i < n; ++i) {
-    const double visible = nearestValue(visible_, tour_[i].head<3>(), 0.0);
+    const double visible = head_gain_ ? head_gain_(tour_[i]) : nearestValue(visible_, tour_[i].head<3>(), 0.0);
     const double d = (tour_[i].head<3>() - uav.head<3>()).norm();
-    const double utility = visible * std::exp(-config_.graph.lambda_tc * d);
+    const double utility = visible * std::exp(-lambda * d);
     if (utility > best_utility) best = i, best_utility = utility;
   }
   if (best == 0) return;

@@ -43,9 +43,13 @@ namespace {
 const char* kUsage =
     "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
     "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--scale S] [--offset X,Y,Z]\n"
-    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--coverage-every S] [--no-plots]\n"
+    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--coverage-every S] [--oracle-gain N]\n"
+    "                   [--oracle-lambda L] [--no-plots]\n"
     "  --config defaults to config/<scene name>.yaml of the package when it exists.\n"
-    "  --coverage-every S evaluates the reconstruction every S seconds of flight (coverage over time).\n";
+    "  --coverage-every S evaluates the reconstruction every S seconds of flight (coverage over time).\n"
+    "  --oracle-gain N (a diagnostic) flies the best of the tour's first N viewpoints first, ranked by the\n"
+    "    true surface not yet observed in their view (the scene's mesh) times exp(-L d), L = lambda_tc\n"
+    "    unless --oracle-lambda L.\n";
 
 int fail(const std::string& message) {
   std::cerr << "nbv_mission: " << message << "\n";
@@ -144,7 +148,7 @@ void meanStd(const std::vector<double>& v, double* mean, double* sd) {
 int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length",
-                                "coverage-every"});
+                                "coverage-every", "oracle-gain", "oracle-lambda"});
   CliArgs args(options, {"help", "no-plots"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -152,9 +156,11 @@ int main(int argc, char** argv) {
   MissionConfig config;
   std::string config_file;
   if (Status s = missionConfigFromArgs(args, NBV_SOURCE_DIR, &config, &config_file); !s) return fail(s.message());
-  int trials = 1, seed = 1;
+  int trials = 1, seed = 1, oracle_gain = 0;
   double coverage_every = 0.0;
   const Status parsed[] = {args.getInt("trials", &trials), args.getInt("seed", &seed),
+                           args.getInt("oracle-gain", &oracle_gain),
+                           args.getDouble("oracle-lambda", &config.explorer.head_lambda),
                            args.getDouble("coverage-every", &coverage_every),
                            args.getInt("threads", &config.threads),
                            args.getDouble("max-flight-time", &config.max_flight_time),
@@ -163,6 +169,12 @@ int main(int argc, char** argv) {
     if (!s) return fail(s.message());
   if (trials < 1 || trials > 100 || seed < 0) return fail("--trials expects 1..100 and --seed >= 0");
   if (args.has("coverage-every") && !(coverage_every >= 1.0)) return fail("--coverage-every expects >= 1 s of flight");
+  if (args.has("oracle-lambda") && !args.has("oracle-gain")) return fail("--oracle-lambda goes with --oracle-gain");
+  if (args.has("oracle-gain")) {
+    if (oracle_gain < 2) return fail("--oracle-gain expects N >= 2 viewpoints to rank");
+    if (args.has("oracle-lambda") && !(config.explorer.head_lambda >= 0.0)) return fail("--oracle-lambda expects L >= 0");
+    config.explorer.head_lookahead = oracle_gain;
+  }
   if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
   const std::string scene_name = std::filesystem::path(config.scene.scene).stem().string();
   const std::string out_dir = args.get("out", "output/mission_" + scene_name);
@@ -202,6 +214,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     MissionRunner runner(trial_config, *scene);
     runner.setProbePoints(probe);
+    runner.setOracleGain(oracle_gain > 0);
     runner.setProgress([](const MissionEvent& e) {
       std::printf("  t %6.0f s  path %6.1f m  ISEs %6zu (C_ins %6zu)  clusters %4zu  tour %4zu  observed %5.1f %%\n",
                   e.t, e.path_length, e.ises, e.inside, e.clusters, e.tour, 100.0 * e.observed);

@@ -490,10 +490,11 @@ TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
     f.viewpoints[1].visible.push_back(static_cast<uint32_t>(f.ises.size()));
     f.ises.push_back(ise);
   }
-  auto firstTarget = [&](int lookahead, size_t* promoted) {
+  auto firstTarget = [&](int lookahead, size_t* promoted, Explorer::HeadGain gain = {}) {
     ExplorerConfig config;
     config.head_lookahead = lookahead;
     Explorer explorer(config, pathConfig());
+    explorer.setHeadGain(gain);
     EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
     const ExplorerDecision d = explorer.update(f, kUav, false);
     EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
@@ -508,6 +509,11 @@ TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
   EXPECT_EQ(promoted, 0u);
   EXPECT_NEAR(firstTarget(2, &promoted).y(), 3.0, 1e-9);
   EXPECT_EQ(promoted, 1u);
+  // A head gain (nbv_mission --oracle-gain) ranks instead of |C_q|: 10 for the
+  // near one, 1 for the far one, so the near one stays first.
+  const Explorer::HeadGain near_more = [](const Eigen::Vector4d& q) { return q.y() < 0.0 ? 10.0 : 1.0; };
+  EXPECT_NEAR(firstTarget(2, &promoted, near_more).y(), -1.5, 1e-9);
+  EXPECT_EQ(promoted, 0u);
 }
 
 TEST(Explorer, ConfigRefusesBadValues) {

@@ -80,6 +80,10 @@ class MissionRunner {
     checkpoint_period_ = period, checkpoint_ = std::move(checkpoint);
   }
 
+  // Diagnostic: the explorer's head_lookahead ranks targets by the ground
+  // truth's unobserved probe points in view (oracle_gain.h) instead of |C_q|.
+  void setOracleGain(bool on) { oracle_gain_ = on; }
+
   MissionResult run();
   // The map after run().
   const TsdfMap& map() const;
@@ -96,6 +100,7 @@ class MissionRunner {
   std::unique_ptr<MeshLayer> mesh_layer_;
   std::vector<Eigen::Vector3d> probe_;
   std::function<void(const MissionEvent&)> progress_;
+  bool oracle_gain_ = false;
   double checkpoint_period_ = 0.0;
   Checkpoint checkpoint_;
 };

@@ -30,6 +30,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,8 @@ struct ExplorerConfig {
   // d the straight distance from the UAV, and the best one is flown first
   // (the rest keep their order). 0 or 1: the tour's order as it is.
   int head_lookahead = 0;
+  // The decay of that comparison per metre; < 0: lambda_tc.
+  double head_lambda = -1.0;
   // travel_yaw only: between a leg's start and its final turn the UAV looks
   // where it sees the most ISEs of the frontier the leg was planned on
   // (gaze_yaw.h), along the leg where it sees fewer than gaze.min_ises.
@@ -203,6 +206,11 @@ class Explorer {
   void replan() { tour_.clear(), have_target_ = false, requested_ = true; }
   // Forgets tour, failures and blacklist (the roadmap is kept).
   void reset();
+  // head_lookahead ranks the first tour configurations by gain(q) exp(-lambda_tc d)
+  // with this gain instead of |C_q| (a diagnostic: nbv_mission --oracle-gain);
+  // an empty function restores |C_q|.
+  using HeadGain = std::function<double(const Eigen::Vector4d& q)>;
+  void setHeadGain(HeadGain gain) { head_gain_ = std::move(gain); }
 
   const std::vector<Eigen::Vector4d>& tour() const { return tour_; }
   const std::vector<Eigen::Vector4d>& currentPath() const { return path_; }
@@ -267,6 +275,7 @@ class Explorer {
   std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
   std::vector<std::pair<Eigen::Vector3d, double>> visible_;  // last frontier: wanted viewpoints, |C_q| (head_lookahead)
   std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
+  HeadGain head_gain_;
   ExplorerStats stats_;
 };
 

@@ -1,0 +1,59 @@
+#include "surface_nbv/mission/oracle_gain.h"
+
+#include <cmath>
+
+#include "surface_nbv/sim/scripted_flight.h"
+
+namespace surface_nbv {
+
+bool surfaceObserved(const TsdfMap& map, const Eigen::Vector3d& p) {
+  Eigen::Vector3i v;
+  if (!map.voxelIndex(p, &v)) return false;
+  const float band = static_cast<float>(map.voxelSize());
+  const float w_th = map.config().w_th;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const TsdfVoxel* voxel = map.voxel(v + Eigen::Vector3i(dx, dy, dz));
+        if (voxel != nullptr && voxel->w >= w_th && std::abs(voxel->phi) <= band) return true;
+      }
+  return false;
+}
+
+OracleGain::OracleGain(const RaycastScene& scene, const CameraConfig& camera, std::vector<Eigen::Vector3d> points)
+    : scene_(scene),
+      camera_(camera),
+      tan_h_(std::tan(0.5 * camera.hfov_deg * M_PI / 180.0)),
+      tan_v_(std::tan(0.5 * camera.vfov_deg * M_PI / 180.0)),
+      points_(std::move(points)),
+      unobserved_(points_) {}
+
+void OracleGain::update(const TsdfMap& map) {
+  std::vector<Eigen::Vector3d> left;
+  left.reserve(unobserved_.size());
+  for (const Eigen::Vector3d& p : unobserved_)
+    if (!surfaceObserved(map, p)) left.push_back(p);
+  unobserved_ = std::move(left);
+}
+
+double OracleGain::operator()(const Eigen::Vector4d& q) const {
+  const Transform T_W_C = levelBodyPose(q.head<3>(), q.w()) * opticalInBody();
+  const Transform T_C_W = T_W_C.inverse();
+  const Eigen::Vector3d origin = T_W_C.translation();
+  // The true surface stops a ray this far before the point: the point's own face.
+  constexpr double kOwnFace = 0.05;
+  size_t seen = 0;
+  for (const Eigen::Vector3d& p : unobserved_) {
+    const Eigen::Vector3d c = T_C_W * p;
+    if (c.z() < camera_.min_range || c.z() > camera_.max_range) continue;
+    if (std::abs(c.x()) > c.z() * tan_h_ || std::abs(c.y()) > c.z() * tan_v_) continue;
+    const Eigen::Vector3d ray = p - origin;
+    const double dist = ray.norm();
+    double t_hit = 0.0;
+    if (scene_.intersect(origin, ray / dist, 0.0, dist - kOwnFace, &t_hit)) continue;
+    ++seen;
+  }
+  return static_cast<double>(seen);
+}
+
+}  // namespace surface_nbv
