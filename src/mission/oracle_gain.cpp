@@ -23,10 +23,7 @@ bool surfaceObserved(const TsdfMap& map, const Eigen::Vector3d& p) {
 OracleGain::OracleGain(const RaycastScene& scene, const CameraConfig& camera, std::vector<Eigen::Vector3d> points)
     : scene_(scene),
       camera_(camera),
-      tan_h_(std::tan(0.5 * camera.hfov_deg * M_PI / 180.0)),
-      tan_v_(std::tan(0.5 * camera.vfov_deg * M_PI / 180.0)),
-      points_(std::move(points)),
-      unobserved_(points_) {}
+      unobserved_(std::move(points)) {}
 
 void OracleGain::update(const TsdfMap& map) {
   std::vector<Eigen::Vector3d> left;
@@ -44,9 +41,7 @@ double OracleGain::operator()(const Eigen::Vector4d& q) const {
   constexpr double kOwnFace = 0.05;
   size_t seen = 0;
   for (const Eigen::Vector3d& p : unobserved_) {
-    const Eigen::Vector3d c = T_C_W * p;
-    if (c.z() < camera_.min_range || c.z() > camera_.max_range) continue;
-    if (std::abs(c.x()) > c.z() * tan_h_ || std::abs(c.y()) > c.z() * tan_v_) continue;
+    if (!camera_.sees(T_C_W * p)) continue;
     const Eigen::Vector3d ray = p - origin;
     const double dist = ray.norm();
     double t_hit = 0.0;

@@ -33,9 +33,7 @@ class OracleGain {
 
  private:
   const RaycastScene& scene_;
-  CameraConfig camera_;
-  double tan_h_, tan_v_;
-  std::vector<Eigen::Vector3d> points_;
+  DepthCamera camera_;
   std::vector<Eigen::Vector3d> unobserved_;
 };
 

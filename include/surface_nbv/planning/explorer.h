@@ -206,9 +206,9 @@ class Explorer {
   void replan() { tour_.clear(), have_target_ = false, requested_ = true; }
   // Forgets tour, failures and blacklist (the roadmap is kept).
   void reset();
-  // head_lookahead ranks the first tour configurations by gain(q) exp(-lambda_tc d)
-  // with this gain instead of |C_q| (a diagnostic: nbv_mission --oracle-gain);
-  // an empty function restores |C_q|.
+  // head_lookahead ranks the first tour configurations by gain(q) exp(-lambda d)
+  // with this gain instead of |C_q|, for diagnostics (nbv_mission
+  // --oracle-gain). An empty function restores |C_q|.
   using HeadGain = std::function<double(const Eigen::Vector4d& q)>;
   void setHeadGain(HeadGain gain) { head_gain_ = std::move(gain); }
 

@@ -2,8 +2,8 @@
 // SURFACE_NBV_X86: AVX2 intrinsics may be compiled (for functions marked
 // target("avx2") and chosen at run time).
 // SURFACE_NBV_AVX2_CLONES: a function attribute that makes GCC build an AVX2
-// and a default version of a plain loop and pick one when the program loads;
-// empty elsewhere.
+// and a default version of a plain loop and pick one when the program loads
+// (empty elsewhere).
 #pragma once
 
 #if defined(__x86_64__) || defined(__i386__)
