@@ -209,12 +209,15 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("reach_clearance", &c->explorer.reach_clearance);
   m.get("min_visible", &c->explorer.min_visible);
   m.get("head_lookahead", &c->explorer.head_lookahead);
+  m.get("head_unknown", &c->explorer.head_unknown);
   m.get("gaze", &c->explorer.gaze.enabled);
   m.get("gaze_step", &c->explorer.gaze.step);
   m.get("gaze_min_ises", &c->explorer.gaze.min_ises);
   m.get("pool_unknown_below", &c->explorer.pool_unknown_below);
-  // The rays only serve pool_unknown_below: a mission without it skips them.
-  c->surface.unknown_fraction = c->explorer.pool_unknown_below > 0.0;
+  // The rays only serve pool_unknown_below and head_unknown: a mission with
+  // neither skips them.
+  c->surface.unknown_fraction =
+      c->explorer.pool_unknown_below > 0.0 || (c->explorer.head_unknown && c->explorer.head_lookahead > 1);
   m.get("path_distances", &c->explorer.path_distances);
   m.get("check_reachable", &c->explorer.check_reachable);
   m.get("empty_updates_before_done", &c->explorer.empty_updates_before_done);

@@ -490,7 +490,10 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
   if (config_.head_lookahead > 1) {
     visible_.clear();
     for (size_t i = 0; i < f.viewpoints.size(); ++i)
-      if (wanted(f, i)) visible_.emplace_back(f.viewpoints[i].position, static_cast<double>(f.viewpoints[i].visible.size()));
+      if (wanted(f, i)) {
+        const Viewpoint& v = f.viewpoints[i];
+        visible_.emplace_back(v.position, v.visible.size() * (config_.head_unknown ? v.unknown_fraction : 1.0));
+      }
   }
   if (config_.pool_unknown_below > 0.0) {
     unknown_.clear();

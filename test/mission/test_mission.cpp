@@ -91,7 +91,28 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
     EXPECT_FALSE(c->tsdf.weight_dropoff);
     EXPECT_DOUBLE_EQ(c->tsdf.truncationDistance(), 3.0 * c->tsdf.voxel_size);
     EXPECT_EQ(c->explorer.min_visible, 3);
+    EXPECT_TRUE(c->surface.unknown_fraction);  // pool_unknown_below reads the rays
   }
+  // The statue flies the tour viewpoint with the best |C_q| u exp(-lambda_tc d)
+  // first (session 25); the power plant keeps the tour's order.
+  EXPECT_TRUE(statue.explorer.head_unknown);
+  EXPECT_GT(statue.explorer.head_lookahead, 1);
+  EXPECT_FALSE(plant.explorer.head_unknown);
+  EXPECT_EQ(plant.explorer.head_lookahead, 0);
+}
+
+// The view rays (Viewpoint::unknown_fraction) are cast only for an option
+// that reads them: pool_unknown_below, or head_unknown with a lookahead.
+TEST(MissionConfig, CastsTheViewRaysOnlyForAnOptionThatReadsThem) {
+  auto load = [](const std::string& mission_keys) {
+    MissionConfig c;
+    EXPECT_TRUE(loadMissionConfig(writeTemp("rays.yaml", "mission:\n" + mission_keys), &c).ok()) << mission_keys;
+    return c.surface.unknown_fraction;
+  };
+  EXPECT_FALSE(load("  min_visible: 3\n"));
+  EXPECT_TRUE(load("  pool_unknown_below: 0.05\n"));
+  EXPECT_TRUE(load("  head_lookahead: 10\n  head_unknown: true\n"));
+  EXPECT_FALSE(load("  head_unknown: true\n"));  // no lookahead: nothing ranks
 }
 
 TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {

@@ -490,9 +490,10 @@ TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
     f.viewpoints[1].visible.push_back(static_cast<uint32_t>(f.ises.size()));
     f.ises.push_back(ise);
   }
-  auto firstTarget = [&](int lookahead, size_t* promoted, Explorer::HeadGain gain = {}) {
+  auto firstTarget = [&](int lookahead, size_t* promoted, Explorer::HeadGain gain = {}, bool unknown = false) {
     ExplorerConfig config;
     config.head_lookahead = lookahead;
+    config.head_unknown = unknown;
     Explorer explorer(config, pathConfig());
     explorer.setHeadGain(gain);
     EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
@@ -514,6 +515,13 @@ TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
   const Explorer::HeadGain near_more = [](const Eigen::Vector4d& q) { return q.y() < 0.0 ? 10.0 : 1.0; };
   EXPECT_NEAR(firstTarget(2, &promoted, near_more).y(), -1.5, 1e-9);
   EXPECT_EQ(promoted, 0u);
+  // head_unknown weighs |C_q| by the share of view rays meeting unknown
+  // space: the far one looks at little (20 * 0.05 * 0.16 = 0.16 against 0.58).
+  f.viewpoints[1].unknown_fraction = 0.05;
+  EXPECT_NEAR(firstTarget(2, &promoted, {}, true).y(), -1.5, 1e-9);
+  EXPECT_EQ(promoted, 0u);
+  EXPECT_NEAR(firstTarget(2, &promoted, {}, false).y(), 3.0, 1e-9);
+  EXPECT_EQ(promoted, 1u);
 }
 
 TEST(Explorer, ConfigRefusesBadValues) {

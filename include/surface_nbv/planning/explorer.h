@@ -72,6 +72,10 @@ struct ExplorerConfig {
   int head_lookahead = 0;
   // The decay of that comparison per metre; < 0: lambda_tc.
   double head_lambda = -1.0;
+  // The comparison weighs |C_q| by the viewpoint's share of view rays that
+  // meet unknown space (Viewpoint::unknown_fraction): of two viewpoints that
+  // see as many ISEs, the one that also looks at more unseen space first.
+  bool head_unknown = false;
   // travel_yaw only: between a leg's start and its final turn the UAV looks
   // where it sees the most ISEs of the frontier the leg was planned on
   // (gaze_yaw.h), along the leg where it sees fewer than gaze.min_ises.
