@@ -88,7 +88,11 @@ const char* toString(ReplanReason reason) {
 }
 
 Explorer::Explorer(const ExplorerConfig& config, const PathPlannerConfig& path_config)
-    : config_(config), planner_(path_config), collision_radius_(path_config.collision_radius) {}
+    : config_(config),
+      planner_(path_config),
+      collision_radius_(path_config.collision_radius),
+      unknown_(config.match_radius),
+      visible_(config.match_radius) {}
 
 Status Explorer::setMap(const CollisionMap* map, const AlignedBox& bounds) {
   if (Status s = planner_.setMap(map, bounds); !s) return s;
@@ -281,14 +285,9 @@ bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vecto
   return std::isfinite(best);
 }
 
-double Explorer::nearestValue(const std::vector<std::pair<Eigen::Vector3d, double>>& list, const Eigen::Vector3d& p,
-                              double none) const {
-  double value = none, best = config_.match_radius;
-  for (const auto& v : list) {
-    const double dist = (v.first - p).norm();
-    if (dist <= best) best = dist, value = v.second;
-  }
-  return value;
+double Explorer::nearestValue(const ValuedPoints& points, const Eigen::Vector3d& p, double none) const {
+  const int i = points.hash.nearest(p, config_.match_radius);
+  return i < 0 ? none : points.values[static_cast<size_t>(i)];
 }
 
 void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
@@ -492,13 +491,13 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
     for (size_t i = 0; i < f.viewpoints.size(); ++i)
       if (wanted(f, i)) {
         const Viewpoint& v = f.viewpoints[i];
-        visible_.emplace_back(v.position, v.visible.size() * (config_.head_unknown ? v.unknown_fraction : 1.0));
+        visible_.add(v.position, v.visible.size() * (config_.head_unknown ? v.unknown_fraction : 1.0));
       }
   }
   if (config_.pool_unknown_below > 0.0) {
     unknown_.clear();
     for (size_t i = 0; i < f.viewpoints.size(); ++i)
-      if (wanted(f, i)) unknown_.emplace_back(f.viewpoints[i].position, f.viewpoints[i].unknown_fraction);
+      if (wanted(f, i)) unknown_.add(f.viewpoints[i].position, f.viewpoints[i].unknown_fraction);
   }
   // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
   // blacklisted (unreachable, or visited max_visits times without completing

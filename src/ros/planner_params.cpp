@@ -68,6 +68,7 @@ Status readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("min_visible", &e->min_visible);
   r->get("head_lookahead", &e->head_lookahead);
   r->get("head_unknown", &e->head_unknown);
+  r->get("head_lambda", &e->head_lambda);
   r->get("gaze", &e->gaze.enabled);
   r->get("gaze_step", &e->gaze.step);
   r->get("gaze_min_ises", &e->gaze.min_ises);

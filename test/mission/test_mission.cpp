@@ -115,6 +115,14 @@ TEST(MissionConfig, CastsTheViewRaysOnlyForAnOptionThatReadsThem) {
   EXPECT_FALSE(load("  head_unknown: true\n"));  // no lookahead: nothing ranks
 }
 
+TEST(MissionConfig, ReadsTheHeadRankingsDecay) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(writeTemp("lambda.yaml", "mission:\n  head_lookahead: 10\n  head_lambda: 0.4\n"), &c).ok());
+  EXPECT_DOUBLE_EQ(c.explorer.head_lambda, 0.4);
+  ASSERT_TRUE(loadMissionConfig(writeTemp("lambda_nan.yaml", "mission:\n  head_lambda: .nan\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("head_lambda"), std::string::npos) << c.validate().message();
+}
+
 TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   MissionConfig c;
   Status s = loadMissionConfig(writeTemp("typo.yaml", "mission:\n  sped: 0.5\n"), &c);

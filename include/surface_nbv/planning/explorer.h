@@ -39,6 +39,7 @@
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/planning/reachable_space.h"
 #include "surface_nbv/surface/frontier.h"
+#include "surface_nbv/util/point_hash.h"
 
 namespace surface_nbv {
 
@@ -249,11 +250,21 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
+  // Wanted viewpoints of the last frontier, each with a value, hashed by position.
+  struct ValuedPoints {
+    explicit ValuedPoints(double cell) : hash(cell) {}
+    void clear() { hash.clear(), values.clear(); }
+    void add(const Eigen::Vector3d& p, double value) {
+      hash.add(p, static_cast<int>(values.size()));
+      values.push_back(value);
+    }
+    PointHash hash;
+    std::vector<double> values;
+  };
   // unknown_fraction of the wanted frontier viewpoint nearest p within match_radius (1: none).
   double unknownNear(const Eigen::Vector3d& p) const { return nearestValue(unknown_, p, 1.0); }
-  // The value of the entry of `list` nearest p within match_radius, else `none`.
-  double nearestValue(const std::vector<std::pair<Eigen::Vector3d, double>>& list, const Eigen::Vector3d& p,
-                      double none) const;
+  // The value of the entry of `points` nearest p within match_radius, else `none`.
+  double nearestValue(const ValuedPoints& points, const Eigen::Vector3d& p, double none) const;
   // head_lookahead: moves the best of the first tour viewpoints to the front.
   void promoteBestHead(const Eigen::Vector4d& uav);
   // Applies travel_yaw to a leg ending at `target`.
@@ -276,8 +287,8 @@ class Explorer {
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
-  std::vector<std::pair<Eigen::Vector3d, double>> unknown_;  // last frontier: wanted viewpoints, unknown_fraction
-  std::vector<std::pair<Eigen::Vector3d, double>> visible_;  // last frontier: wanted viewpoints, |C_q| (head_lookahead)
+  ValuedPoints unknown_;   // last frontier: wanted viewpoints, unknown_fraction
+  ValuedPoints visible_;   // last frontier: wanted viewpoints, |C_q| (head_lookahead)
   std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
   HeadGain head_gain_;
   ExplorerStats stats_;

@@ -1,6 +1,6 @@
 // Points hashed into cubes of `cell` metres, for "is any point within r"
-// queries with r <= cell (the explorer matches tour and frontier viewpoints
-// with it).
+// and "which point is nearest within r" queries with r <= cell (the explorer
+// matches tour and frontier viewpoints with it).
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,27 @@ class PointHash {
         }
     return false;
   }
+  // The id of the point nearest p within r, of equally near ones the largest
+  // id; -1 when none is that near.
+  int nearest(const Eigen::Vector3d& p, double r) const {
+    int best = -1;
+    double best_distance = r;
+    const Eigen::Vector3i c = cellOf(p);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
+          if (it == cells_.end()) continue;
+          for (const auto& e : it->second) {
+            const double distance = (e.first - p).norm();
+            if (distance < best_distance || (distance == best_distance && e.second > best)) {
+              best = e.second, best_distance = distance;
+            }
+          }
+        }
+    return best;
+  }
+  void clear() { cells_.clear(); }
 
  private:
   Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
