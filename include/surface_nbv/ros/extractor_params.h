@@ -15,7 +15,7 @@
 namespace surface_nbv {
 
 struct ExtractorConfig {
-  std::string shared_namespace = "/nbv";
+  std::string shared_namespace = kSharedNamespace;
   TsdfConfig map;                 // voxel size, w_th and bounds of the mirrored map
   SurfaceConfig surface;
   CollisionConfig collision;

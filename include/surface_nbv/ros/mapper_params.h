@@ -13,7 +13,7 @@
 namespace surface_nbv {
 
 struct MapperConfig {
-  std::string shared_namespace = "/nbv";
+  std::string shared_namespace = kSharedNamespace;
   TsdfConfig tsdf;
   CameraConfig camera;            // only min_range / max_range are used (intrinsics come from CameraInfo)
   std::string world_frame = "world";

@@ -18,6 +18,9 @@ namespace surface_nbv {
 // Where the configs' `tracker:` section (the simulated UAV's limits) lives by
 // default; mpc_tracker and nbv_planner read it (~tracker_namespace).
 inline constexpr char kTrackerNamespace[] = "/tracker";
+// Where the configs' `nbv:` section (map, camera, planning parameters every
+// node shares) lives by default (~shared_namespace).
+inline constexpr char kSharedNamespace[] = "/nbv";
 
 class ParamReader {
  public:

@@ -18,7 +18,7 @@
 namespace surface_nbv {
 
 struct PlannerNodeConfig {
-  std::string shared_namespace = "/nbv";
+  std::string shared_namespace = kSharedNamespace;
   // The explorer's keys (travel_yaw, reach_tolerance, ...) and the path
   // budget (path_iterations, path_time_budget) of the YAML's mission section,
   // which nbv_mission reads too; private parameters override them.

@@ -14,7 +14,7 @@ namespace surface_nbv {
 // The depth_sim node's own settings.
 struct DepthSimConfig {
   SceneConfig scene;
-  std::string shared_namespace = "/nbv";  // where camera/* lives
+  std::string shared_namespace = kSharedNamespace;  // where camera/* lives
   std::string world_frame = "world";
   std::string camera_frame = "camera";
   int render_threads = 2;
