@@ -211,6 +211,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("head_lookahead", &c->explorer.head_lookahead);
   m.get("head_unknown", &c->explorer.head_unknown);
   m.get("head_lambda", &c->explorer.head_lambda);
+  m.get("head_vertical_scale", &c->explorer.head_vertical_scale);
   m.get("gaze", &c->explorer.gaze.enabled);
   m.get("gaze_step", &c->explorer.gaze.step);
   m.get("gaze_min_ises", &c->explorer.gaze.min_ises);

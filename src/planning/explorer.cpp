@@ -49,6 +49,9 @@ Status ExplorerConfig::validate() const {
   if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
   if (!std::isfinite(head_lambda)) return Status::Error("head_lambda expected finite");
+  if (!(head_vertical_scale >= 0.0 && std::isfinite(head_vertical_scale))) {
+    return Status::Error("head_vertical_scale expected >= 0");
+  }
   if (gaze.enabled) {
     if (!travel_yaw) return Status::Error("gaze expects travel_yaw (it turns the yaws travel_yaw sets)");
     if (Status s = gaze.validate(); !s) return s;
@@ -297,7 +300,9 @@ void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
   const double lambda = config_.head_lambda >= 0.0 ? config_.head_lambda : config_.graph.lambda_tc;
   for (size_t i = 0; i < n; ++i) {
     const double visible = head_gain_ ? head_gain_(tour_[i]) : nearestValue(visible_, tour_[i].head<3>(), 0.0);
-    const double d = (tour_[i].head<3>() - uav.head<3>()).norm();
+    Eigen::Vector3d delta = tour_[i].head<3>() - uav.head<3>();
+    delta.z() *= config_.head_vertical_scale;
+    const double d = delta.norm();
     const double utility = visible * std::exp(-lambda * d);
     if (utility > best_utility) best = i, best_utility = utility;
   }

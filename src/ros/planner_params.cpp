@@ -69,6 +69,7 @@ Status readExplorerKeys(ParamReader* r, ExplorerConfig* e) {
   r->get("head_lookahead", &e->head_lookahead);
   r->get("head_unknown", &e->head_unknown);
   r->get("head_lambda", &e->head_lambda);
+  r->get("head_vertical_scale", &e->head_vertical_scale);
   r->get("gaze", &e->gaze.enabled);
   r->get("gaze_step", &e->gaze.step);
   r->get("gaze_min_ises", &e->gaze.min_ises);

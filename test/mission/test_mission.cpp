@@ -99,6 +99,8 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
     EXPECT_TRUE(c->explorer.head_unknown);
     EXPECT_GE(c->explorer.head_lookahead, 1000);
   }
+  // The statue's comparison counts a climb twice (session 26).
+  EXPECT_DOUBLE_EQ(statue.explorer.head_vertical_scale, 2.0);
 }
 
 // The view rays (Viewpoint::unknown_fraction) are cast only for an option
@@ -117,8 +119,12 @@ TEST(MissionConfig, CastsTheViewRaysOnlyForAnOptionThatReadsThem) {
 
 TEST(MissionConfig, ReadsTheHeadRankingsDecay) {
   MissionConfig c;
-  ASSERT_TRUE(loadMissionConfig(writeTemp("lambda.yaml", "mission:\n  head_lookahead: 10\n  head_lambda: 0.4\n"), &c).ok());
+  ASSERT_TRUE(loadMissionConfig(writeTemp("lambda.yaml", "mission:\n  head_lookahead: 10\n  head_lambda: 0.4\n"
+                                                         "  head_vertical_scale: 2.0\n"),
+                                &c)
+                  .ok());
   EXPECT_DOUBLE_EQ(c.explorer.head_lambda, 0.4);
+  EXPECT_DOUBLE_EQ(c.explorer.head_vertical_scale, 2.0);
   ASSERT_TRUE(loadMissionConfig(writeTemp("lambda_nan.yaml", "mission:\n  head_lambda: .nan\n"), &c).ok());
   EXPECT_NE(c.validate().message().find("head_lambda"), std::string::npos) << c.validate().message();
 }

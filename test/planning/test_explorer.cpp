@@ -524,6 +524,25 @@ TEST(Explorer, HeadLookaheadFliesTheBestOfTheFirstViewpointsFirst) {
   EXPECT_EQ(promoted, 1u);
 }
 
+// head_vertical_scale: a climb counts s times its height in the comparison.
+TEST(Explorer, HeadVerticalScaleMakesAClimbCostMoreThanAMoveAcross) {
+  WallWorld world(true);
+  // 1.2 m above the UAV, and 2 m beside it at its height: one ISE each.
+  const Frontier f = makeFrontier({{{-4, -3, 3.7}}, {{-4, -1, 2.5}}});
+  auto firstTarget = [&](double scale) {
+    ExplorerConfig config;
+    config.head_lookahead = 2;
+    config.head_vertical_scale = scale;
+    Explorer explorer(config, pathConfig());
+    EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    const ExplorerDecision d = explorer.update(f, kUav, false);
+    EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
+    return d.target;
+  };
+  EXPECT_NEAR(firstTarget(1.0).z(), 3.7, 1e-9);  // 1.2 m against 2 m
+  EXPECT_NEAR(firstTarget(2.0).z(), 2.5, 1e-9);  // 2.4 m against 2 m
+}
+
 TEST(Explorer, ConfigRefusesBadValues) {
   ExplorerConfig c;
   EXPECT_TRUE(c.validate().ok());
@@ -544,6 +563,9 @@ TEST(Explorer, ConfigRefusesBadValues) {
   c = ExplorerConfig();
   c.head_lookahead = -1;
   EXPECT_NE(c.validate().message().find("head_lookahead"), std::string::npos);
+  c = ExplorerConfig();
+  c.head_vertical_scale = -0.5;
+  EXPECT_NE(c.validate().message().find("head_vertical_scale"), std::string::npos);
   for (double budget : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
     c = ExplorerConfig();
     c.leg_time_budget = budget;

@@ -73,6 +73,9 @@ struct ExplorerConfig {
   int head_lookahead = 0;
   // The decay of that comparison per metre; < 0: lambda_tc.
   double head_lambda = -1.0;
+  // The comparison measures d as sqrt(dx^2 + dy^2 + (s dz)^2) with s this
+  // scale: above 1 a climb costs more than a move across.
+  double head_vertical_scale = 1.0;
   // The comparison weighs |C_q| by the viewpoint's share of view rays that
   // meet unknown space (Viewpoint::unknown_fraction): of two viewpoints that
   // see as many ISEs, the one that also looks at more unseen space first.
