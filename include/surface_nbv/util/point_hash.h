@@ -19,6 +19,27 @@ class PointHash {
   // Calls f(id) for every point within r of p, stops when f returns true; true if one did.
   template <typename F>
   bool any(const Eigen::Vector3d& p, double r, F f) const {
+    return visit(p, [&](const Eigen::Vector3d& q, int id) { return (q - p).norm() <= r && f(id); });
+  }
+  // The id of the point nearest p within r, of equally near ones the largest
+  // id; -1 when none is that near.
+  int nearest(const Eigen::Vector3d& p, double r) const {
+    int best = -1;
+    double best_distance = r;
+    visit(p, [&](const Eigen::Vector3d& q, int id) {
+      const double distance = (q - p).norm();
+      if (distance < best_distance || (distance == best_distance && id > best)) best = id, best_distance = distance;
+      return false;
+    });
+    return best;
+  }
+  void clear() { cells_.clear(); }
+
+ private:
+  // Calls f(point, id) for the points of p's cell and its 26 neighbours
+  // until f returns true; true if it did.
+  template <typename F>
+  bool visit(const Eigen::Vector3d& p, F f) const {
     const Eigen::Vector3i c = cellOf(p);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
@@ -26,33 +47,10 @@ class PointHash {
           auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
           if (it == cells_.end()) continue;
           for (const auto& e : it->second)
-            if ((e.first - p).norm() <= r && f(e.second)) return true;
+            if (f(e.first, e.second)) return true;
         }
     return false;
   }
-  // The id of the point nearest p within r, of equally near ones the largest
-  // id; -1 when none is that near.
-  int nearest(const Eigen::Vector3d& p, double r) const {
-    int best = -1;
-    double best_distance = r;
-    const Eigen::Vector3i c = cellOf(p);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
-          if (it == cells_.end()) continue;
-          for (const auto& e : it->second) {
-            const double distance = (e.first - p).norm();
-            if (distance < best_distance || (distance == best_distance && e.second > best)) {
-              best = e.second, best_distance = distance;
-            }
-          }
-        }
-    return best;
-  }
-  void clear() { cells_.clear(); }
-
- private:
   Eigen::Vector3i cellOf(const Eigen::Vector3d& p) const { return (p / cell_).array().floor().cast<int>(); }
   static int64_t key(const Eigen::Vector3i& c) {
     return (static_cast<int64_t>(c.x()) * 73856093) ^ (static_cast<int64_t>(c.y()) * 19349663) ^
