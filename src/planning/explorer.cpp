@@ -94,8 +94,7 @@ Explorer::Explorer(const ExplorerConfig& config, const PathPlannerConfig& path_c
     : config_(config),
       planner_(path_config),
       collision_radius_(path_config.collision_radius),
-      unknown_(config.match_radius),
-      visible_(config.match_radius) {}
+      wanted_(config.match_radius) {}
 
 Status Explorer::setMap(const CollisionMap* map, const AlignedBox& bounds) {
   if (Status s = planner_.setMap(map, bounds); !s) return s;
@@ -288,9 +287,9 @@ bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vecto
   return std::isfinite(best);
 }
 
-double Explorer::nearestValue(const ValuedPoints& points, const Eigen::Vector3d& p, double none) const {
-  const int i = points.hash.nearest(p, config_.match_radius);
-  return i < 0 ? none : points.values[static_cast<size_t>(i)];
+double Explorer::nearestValue(const std::vector<double>& values, const Eigen::Vector3d& p, double none) const {
+  const int i = wanted_.hash.nearest(p, config_.match_radius);
+  return i < 0 ? none : values[static_cast<size_t>(i)];
 }
 
 void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
@@ -299,7 +298,7 @@ void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
   double best_utility = -1.0;
   const double lambda = config_.head_lambda >= 0.0 ? config_.head_lambda : config_.graph.lambda_tc;
   for (size_t i = 0; i < n; ++i) {
-    const double visible = head_gain_ ? head_gain_(tour_[i]) : nearestValue(visible_, tour_[i].head<3>(), 0.0);
+    const double visible = head_gain_ ? head_gain_(tour_[i]) : nearestValue(wanted_.gain, tour_[i].head<3>(), 0.0);
     Eigen::Vector3d delta = tour_[i].head<3>() - uav.head<3>();
     delta.z() *= config_.head_vertical_scale;
     const double d = delta.norm();
@@ -491,18 +490,15 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
   }
   const Frontier f = plannable(frontier);
   if (config_.gaze.enabled) gaze_targets_ = gazeTargets(frontier);
-  if (config_.head_lookahead > 1) {
-    visible_.clear();
+  if (config_.head_lookahead > 1 || config_.pool_unknown_below > 0.0) {
+    wanted_.hash.clear(), wanted_.unknown.clear(), wanted_.gain.clear();
     for (size_t i = 0; i < f.viewpoints.size(); ++i)
       if (wanted(f, i)) {
         const Viewpoint& v = f.viewpoints[i];
-        visible_.add(v.position, v.visible.size() * (config_.head_unknown ? v.unknown_fraction : 1.0));
+        wanted_.hash.add(v.position, static_cast<int>(wanted_.unknown.size()));
+        wanted_.unknown.push_back(v.unknown_fraction);
+        wanted_.gain.push_back(v.visible.size() * (config_.head_unknown ? v.unknown_fraction : 1.0));
       }
-  }
-  if (config_.pool_unknown_below > 0.0) {
-    unknown_.clear();
-    for (size_t i = 0; i < f.viewpoints.size(); ++i)
-      if (wanted(f, i)) unknown_.add(f.viewpoints[i].position, f.viewpoints[i].unknown_fraction);
   }
   // Def. 2 read with what the flight has shown: an ISE whose viewpoint is
   // blacklisted (unreachable, or visited max_visits times without completing

@@ -253,21 +253,18 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
-  // Wanted viewpoints of the last frontier, each with a value, hashed by position.
-  struct ValuedPoints {
-    explicit ValuedPoints(double cell) : hash(cell) {}
-    void clear() { hash.clear(), values.clear(); }
-    void add(const Eigen::Vector3d& p, double value) {
-      hash.add(p, static_cast<int>(values.size()));
-      values.push_back(value);
-    }
+  // The wanted viewpoints of the last frontier, hashed by position, with
+  // their unknown_fraction (pool_unknown_below) and their gain in the
+  // head_lookahead comparison (|C_q|, times unknown_fraction with head_unknown).
+  struct WantedViewpoints {
+    explicit WantedViewpoints(double cell) : hash(cell) {}
     PointHash hash;
-    std::vector<double> values;
+    std::vector<double> unknown, gain;
   };
   // unknown_fraction of the wanted frontier viewpoint nearest p within match_radius (1: none).
-  double unknownNear(const Eigen::Vector3d& p) const { return nearestValue(unknown_, p, 1.0); }
-  // The value of the entry of `points` nearest p within match_radius, else `none`.
-  double nearestValue(const ValuedPoints& points, const Eigen::Vector3d& p, double none) const;
+  double unknownNear(const Eigen::Vector3d& p) const { return nearestValue(wanted_.unknown, p, 1.0); }
+  // values[i] of the wanted viewpoint i nearest p within match_radius, else `none`.
+  double nearestValue(const std::vector<double>& values, const Eigen::Vector3d& p, double none) const;
   // head_lookahead: moves the best of the first tour viewpoints to the front.
   void promoteBestHead(const Eigen::Vector4d& uav);
   // Applies travel_yaw to a leg ending at `target`.
@@ -290,8 +287,7 @@ class Explorer {
   std::vector<Place> places_;
   std::vector<Eigen::Vector3d> blacklist_;
   std::vector<TourArc> arcs_;
-  ValuedPoints unknown_;   // last frontier: wanted viewpoints, unknown_fraction
-  ValuedPoints visible_;   // last frontier: wanted viewpoints, |C_q| (head_lookahead)
+  WantedViewpoints wanted_;  // of the last frontier (head_lookahead, pool_unknown_below)
   std::vector<GazeTarget> gaze_targets_;                     // last frontier's ISEs of C_ins (gaze.enabled)
   HeadGain head_gain_;
   ExplorerStats stats_;
