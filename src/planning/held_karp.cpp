@@ -9,15 +9,7 @@ TourResult heldKarp(const CostMatrix& costs) {
   const auto t0 = std::chrono::steady_clock::now();
   TourResult r;
   const int n = costs.size();
-  if (Status s = costs.validate(); !s) {
-    r.message = s.message();
-    return r;
-  }
-  if (n == 0) {
-    r.status = TspStatus::kEmptyInput;
-    r.message = "no node";
-    return r;
-  }
+  if (refuseInput(costs.validate(), n, &r)) return r;
   if (n > kHeldKarpMaxNodes) {
     r.message = "Held-Karp takes at most " + std::to_string(kHeldKarpMaxNodes) + " nodes, got " + std::to_string(n);
     return r;

@@ -114,15 +114,7 @@ TourResult LinKernighanSolver::solve(const CostMatrix& costs) const {
   const int n = costs.size();
   Status s = config_.validate();
   if (s) s = costs.validate();
-  if (!s) {
-    r.message = s.message();
-    return r;
-  }
-  if (n == 0) {
-    r.status = TspStatus::kEmptyInput;
-    r.message = "no node";
-    return r;
-  }
+  if (refuseInput(s, n, &r)) return r;
   if (n <= std::max(4, config_.exact_max_nodes)) {  // LK needs 5 nodes for a 3-opt move
     r = heldKarp(costs);
     r.seconds = secondsSince(t0);

@@ -9,11 +9,7 @@ TourResult solveOpenPath(const CostMatrix& costs, int start, const LinKernighanS
   const auto t0 = std::chrono::steady_clock::now();
   const int n = costs.size();
   TourResult r;
-  if (n == 0) {
-    r.status = TspStatus::kEmptyInput;
-    r.message = "no node";
-    return r;
-  }
+  if (refuseInput(Status::Ok(), n, &r)) return r;  // the solver checks the costs
   if (start < 0 || start >= n) {
     r.status = TspStatus::kInvalidStart;
     r.message = "start node " + std::to_string(start) + " is not in [0, " + std::to_string(n) + ")";

@@ -14,4 +14,18 @@ const char* toString(TspStatus status) {
   return "unknown";
 }
 
+bool refuseInput(const Status& checked, int nodes, TourResult* result) {
+  if (!checked) {
+    result->status = TspStatus::kInvalidInput;
+    result->message = checked.message();
+    return true;
+  }
+  if (nodes == 0) {
+    result->status = TspStatus::kEmptyInput;
+    result->message = "no node";
+    return true;
+  }
+  return false;
+}
+
 }  // namespace surface_nbv

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "surface_nbv/util/status.h"
+
 namespace surface_nbv {
 
 enum class TspStatus {
@@ -33,5 +35,10 @@ struct TourResult {
   double seconds = 0.0;   // wall time of the call
   std::string message;    // what was wrong, for the error statuses
 };
+
+// What a solver answers before it starts: kInvalidInput with the message when
+// `checked` (its validation of the costs and its config) failed, kEmptyInput
+// when there is no node. Returns true when it set *result so.
+bool refuseInput(const Status& checked, int nodes, TourResult* result);
 
 }  // namespace surface_nbv
