@@ -6,23 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh_test_helpers.h"
+
 namespace surface_nbv {
 namespace {
 
 using Eigen::Vector2d;
 using Eigen::Vector3d;
 
-// Divergence theorem: positive for outward normals, negative for inward.
-double signedVolume(const TriangleMesh& mesh) {
-  double sum = 0.0;
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    const Vector3d a = mesh.vertices[t[0]].cast<double>();
-    const Vector3d b = mesh.vertices[t[1]].cast<double>();
-    const Vector3d c = mesh.vertices[t[2]].cast<double>();
-    sum += a.dot(b.cross(c)) / 6.0;
-  }
-  return sum;
-}
+using mesh_test::signedVolume;
 
 // Every edge is used by exactly two triangles, once in each direction
 // (closed, manifold and consistently wound).

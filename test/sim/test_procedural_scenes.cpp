@@ -6,21 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include "mesh_test_helpers.h"
+
 namespace surface_nbv {
 namespace {
 
 using Eigen::Vector3d;
 
-double signedVolume(const TriangleMesh& mesh) {
-  double sum = 0.0;
-  for (const Eigen::Vector3i& t : mesh.triangles) {
-    const Vector3d a = mesh.vertices[t[0]].cast<double>();
-    const Vector3d b = mesh.vertices[t[1]].cast<double>();
-    const Vector3d c = mesh.vertices[t[2]].cast<double>();
-    sum += a.dot(b.cross(c)) / 6.0;
-  }
-  return sum;
-}
+using mesh_test::signedVolume;
 
 // Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
 double pointTriangleDistance(const Vector3d& p, const Vector3d& a, const Vector3d& b,

@@ -50,6 +50,16 @@ inline std::unique_ptr<CollisionMap> collisionFor(const TsdfMap& map) {
   return std::make_unique<CollisionMap>(map, c);
 }
 
+// 12 x 12 x 6 m, all known free, with its collision map.
+struct FreeMap {
+  TsdfMap map{gridConfig(Eigen::Vector3i(48, 48, 24))};
+  std::unique_ptr<CollisionMap> collision;
+  FreeMap() {
+    fillAll(&map, VoxelState::kFree);
+    collision = collisionFor(map);
+  }
+};
+
 inline SurfaceConfig testSurfaceConfig() {
   SurfaceConfig c;
   c.threads = 1;

@@ -19,14 +19,7 @@ Viewpoint at(double x, double y, double z, std::vector<uint32_t> visible = {}) {
   return v;
 }
 
-// 12 x 12 x 6 m, all known free.
-struct FreeWorld {
-  TsdfMap map{gridConfig(Eigen::Vector3i(48, 48, 24))};
-  std::unique_ptr<CollisionMap> collision;
-  FreeWorld() {
-    fillAll(&map, VoxelState::kFree);
-    collision = collisionFor(map);
-  }
+struct FreeWorld : FreeMap {
   std::vector<Cluster> cluster(std::vector<Viewpoint>* viewpoints, size_t num_ises = 0,
                                std::vector<std::pair<int, int>>* links = nullptr, int threads = 1) {
     SurfaceConfig config = testSurfaceConfig();

@@ -20,14 +20,7 @@ Viewpoint pose(double x, double y, double z, double yaw_deg, uint32_t source) {
   return v;
 }
 
-// 12 x 12 x 6 m, all known free.
-struct FreeWorld {
-  TsdfMap map{gridConfig(Eigen::Vector3i(48, 48, 24))};
-  std::unique_ptr<CollisionMap> collision;
-  FreeWorld() {
-    fillAll(&map, VoxelState::kFree);
-    collision = collisionFor(map);
-  }
+struct FreeWorld : FreeMap {
   std::vector<Viewpoint> merge(const std::vector<Viewpoint>& poses, std::vector<int>* group_of = nullptr) {
     const ViewpointMerger merger(testSurfaceConfig());
     return merger.merge(poses, *collision, map.config().bounds, group_of);
