@@ -143,6 +143,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   cam.get("rate_hz", &c->camera.rate_hz);
   cam.get("noise_k", &c->camera.noise_k);
   cam.get("noise_seed", &c->camera.noise_seed);
+  cam.get("pitch_deg", &c->camera.pitch_deg);
   nbv.get("delta_pose", &c->surface.delta_pose);
   nbv.get("d_nu", &c->surface.d_nu);
   nbv.get("d_nu_max", &c->surface.d_nu_max);

@@ -86,7 +86,7 @@ MissionResult MissionRunner::run() {
   camera_config.noise_seed = c.camera.noise_seed + c.seed;
   const DepthCamera camera(camera_config);
   const DepthRenderer renderer(scene_, camera, c.threads);
-  const Transform T_B_C = opticalInBody();
+  const Transform T_B_C = opticalInBody(camera_config);
   SurfaceConfig surface = c.surface;
   surface.threads = c.threads;
   FrontierBuilder builder(surface);

@@ -34,7 +34,7 @@ void OracleGain::update(const TsdfMap& map) {
 }
 
 double OracleGain::operator()(const Eigen::Vector4d& q) const {
-  const Transform T_W_C = levelBodyPose(q.head<3>(), q.w()) * opticalInBody();
+  const Transform T_W_C = levelBodyPose(q.head<3>(), q.w()) * opticalInBody(camera_.config());
   const Transform T_C_W = T_W_C.inverse();
   const Eigen::Vector3d origin = T_W_C.translation();
   // The true surface stops a ray this far before the point: the point's own face.

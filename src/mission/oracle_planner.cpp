@@ -192,7 +192,11 @@ void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
   const Eigen::Vector3i g = collision_->gridCells();
   const double cell = collision_->cellSize();
   const double clearance = config_.path.collision_radius + cell;
-  const double max_elevation = (0.5 * config_.camera.vfov_deg - config_.vfov_margin_deg) * M_PI / 180.0;
+  // Elevations of a pose above its sample that keep the sample inside the
+  // vertical FOV, which the mount's pitch moves down.
+  const double pitch = config_.camera.pitch_deg;
+  const double max_elevation = (0.5 * config_.camera.vfov_deg + pitch - config_.vfov_margin_deg) * M_PI / 180.0;
+  const double min_elevation = -(0.5 * config_.camera.vfov_deg - pitch - config_.vfov_margin_deg) * M_PI / 180.0;
   auto reachable = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3i c = ((p - config_.tsdf.bounds.min) / cell).array().floor().cast<int>();
     if (!((c.array() >= 0).all() && (c.array() < g.array()).all())) return false;
@@ -206,14 +210,14 @@ void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
     for (int side : {1, -1}) {
       const Eigen::Vector3d m = side * source.normals[i].cast<double>();
       const double horizontal = m.head<2>().norm();
-      // A level camera cannot look straight down: an upward normal gets a
+      // The camera cannot look straight down: an upward normal gets a
       // seeded azimuth and every elevation is clamped into the vertical FOV.
       const double az = horizontal > 1e-3 ? std::atan2(m.y(), m.x()) : azimuth(rng);
-      const double el = std::clamp(std::atan2(m.z(), horizontal), -max_elevation, max_elevation);
+      const double el = std::clamp(std::atan2(m.z(), horizontal), min_elevation, max_elevation);
       for (double f : config_.offset_fractions) {
         // A pose in collision (e.g. below a sample near the floor) is tried
         // again from above, then from below, at the FOV's edge.
-        const double tilts[3] = {el, max_elevation, -max_elevation};
+        const double tilts[3] = {el, max_elevation, min_elevation};
         for (int k = 0; k < 3; ++k) {
           const double tilt = tilts[k];
           if (k > 0 && tilt == el) continue;
@@ -256,7 +260,7 @@ std::vector<std::vector<uint32_t>> OraclePlanner::visibility(const Candidates& c
     Viewpoint vp;
     vp.position = c.poses[i].head<3>();
     vp.yaw = c.poses[i].w();
-    const Transform T_W_C = vp.cameraPose();
+    const Transform T_W_C = vp.cameraPose(config_.camera);
     const Transform T_C_W = T_W_C.inverse();
     DepthImage image;
     renderer.render(T_W_C, &image);

@@ -34,32 +34,42 @@ bool lineOfSight(const CollisionMap& map, const Eigen::Vector3d& p, const Eigen:
 void candidates(const GazeConfig& c, const std::vector<GazeTarget>& targets, const CollisionMap* map,
                 const Eigen::Vector3d& p, std::vector<Candidate>* out) {
   out->clear();
-  const double tan_v = std::tan(0.5 * c.camera.vfov_deg * kDeg);
-  const double cos_h = std::cos(0.5 * c.camera.hfov_deg * kDeg);
+  const double half_v = 0.5 * c.camera.vfov_deg * kDeg, pitch = c.camera.pitch_deg * kDeg;
+  const double tan_h = std::tan(0.5 * c.camera.hfov_deg * kDeg), cos_h = std::cos(0.5 * c.camera.hfov_deg * kDeg);
+  const double corner = c.camera.max_range * std::sqrt(1.0 + tan_h * tan_h + std::tan(half_v) * std::tan(half_v));
   for (const GazeTarget& t : targets) {
     const Eigen::Vector3d d = t.position - p;
     const double h = d.head<2>().norm();
-    // Some yaw puts it on the optical axis (depth h) and the FOV's edge
-    // (depth h cos(hfov / 2)): both bounds must be reachable.
-    if (h < c.camera.min_range || h * cos_h > c.camera.max_range || std::abs(d.z()) > h * tan_v) continue;
+    // Necessary at some yaw: the depth is largest when the yaw faces the
+    // target; the frustum spans elevations [-half_v - pitch, half_v - pitch].
+    // A level camera's depth is at least h cos(hfov / 2) inside the FOV; a
+    // pitched one's distance at most the far corner's.
+    const double elevation = std::atan2(d.z(), h);
+    if (h * std::cos(pitch) - d.z() * std::sin(pitch) < c.camera.min_range) continue;
+    if (elevation > half_v - pitch + 1e-12 || elevation < -half_v - pitch - 1e-12) continue;
+    if (pitch == 0.0 ? h * cos_h > c.camera.max_range : d.norm() > corner) continue;
     if (t.direction.dot(-d) <= 0.0) continue;  // p is behind the surface
     if (map != nullptr && !lineOfSight(*map, p, t.position, c.end_margin)) continue;
     out->push_back({std::atan2(d.y(), d.x()), h, d.z()});
   }
 }
 
-// The level camera's frustum, seen from above: whether a candidate lies in it at `yaw`.
+// The frustum of the camera on a level UAV (its mount pitched down by the
+// camera's pitch): whether a candidate lies in it at `yaw`.
 struct Frustum {
   explicit Frustum(const CameraConfig& c)
       : tan_h(std::tan(0.5 * c.hfov_deg * kDeg)), tan_v(std::tan(0.5 * c.vfov_deg * kDeg)),
+        cos_p(std::cos(c.pitch_deg * kDeg)), sin_p(std::sin(c.pitch_deg * kDeg)),
         min_range(c.min_range), max_range(c.max_range) {}
   bool sees(const Candidate& a, double yaw) const {
     const double off = a.azimuth - yaw;
-    const double forward = a.horizontal * std::cos(off);
-    if (forward < min_range || forward > max_range) return false;
-    return std::abs(a.horizontal * std::sin(off)) <= forward * tan_h && std::abs(a.dz) <= forward * tan_v;
+    const double ahead = a.horizontal * std::cos(off);  // along the yaw, level
+    const double depth = ahead * cos_p - a.dz * sin_p;
+    if (depth < min_range || depth > max_range) return false;
+    const double down = -ahead * sin_p - a.dz * cos_p;  // along the optical y axis
+    return std::abs(a.horizontal * std::sin(off)) <= depth * tan_h && std::abs(down) <= depth * tan_v;
   }
-  double tan_h, tan_v, min_range, max_range;
+  double tan_h, tan_v, cos_p, sin_p, min_range, max_range;
 };
 
 double binYaw(const GazeConfig& c, int k) { return -M_PI + 2.0 * M_PI * k / c.yaw_bins; }

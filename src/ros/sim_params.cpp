@@ -30,6 +30,7 @@ void readCameraConfig(ParamReader* reader, CameraConfig* c) {
   reader->get("camera/rate_hz", &c->rate_hz);
   reader->get("camera/noise_k", &c->noise_k);
   reader->get("camera/noise_seed", &c->noise_seed);
+  reader->get("camera/pitch_deg", &c->pitch_deg);
 }
 
 void readSceneConfig(ParamReader* reader, SceneConfig* c) {

@@ -25,6 +25,8 @@ Status CameraConfig::validate() const {
       expect(std::isfinite(rate_hz) && rate_hz > 0.0 && rate_hz <= 1000.0,
              "camera/rate_hz expected in (0, 1000], got " + std::to_string(rate_hz)),
       expect(std::isfinite(noise_k) && noise_k >= 0.0, "camera/noise_k expected >= 0, got " + std::to_string(noise_k)),
+      expect(std::isfinite(pitch_deg) && std::abs(pitch_deg) < 90.0 - 0.5 * vfov_deg,
+             "camera/pitch_deg expected in (-(90 - vfov_deg / 2), 90 - vfov_deg / 2), got " + std::to_string(pitch_deg)),
   };
   for (const Status& s : checks) {
     if (!s) return s;

@@ -4,8 +4,8 @@
 
 namespace surface_nbv {
 
-Transform Viewpoint::cameraPose() const {
-  return levelBodyPose(position, yaw) * opticalInBody();
+Transform Viewpoint::cameraPose(const CameraConfig& camera) const {
+  return levelBodyPose(position, yaw) * opticalInBody(camera);
 }
 
 }  // namespace surface_nbv

@@ -37,7 +37,7 @@ void addApproachSources(const std::vector<Ise>& ises, std::vector<Viewpoint>* vi
 double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, const CameraConfig& camera) {
   constexpr int kColumns = 9, kRows = 6;
   const VoxelStateGrid& grid = rays.grid();
-  const Transform T_W_C = viewpoint.cameraPose();
+  const Transform T_W_C = viewpoint.cameraPose(camera);
   const double tx = std::tan(0.5 * camera.hfov_deg * M_PI / 180.0), ty = std::tan(0.5 * camera.vfov_deg * M_PI / 180.0);
   const Eigen::Vector3i last = grid.gridVoxels() - Eigen::Vector3i::Ones();
   uint64_t entered = 0, unknown = 0, steps = 0;

@@ -18,7 +18,11 @@ Eigen::Vector3d fromAngles(double azimuth, double elevation) {
 }  // namespace
 
 ViewpointGenerator::ViewpointGenerator(const SurfaceConfig& config) : config_(config) {
-  max_elevation_ = (0.5 * config_.camera.vfov_deg - config_.fov_margin_deg) * kDegToRad;
+  // A pose `e` above its ISE sees it `e` below the horizon: inside the vertical
+  // FOV, which a mount pitched down moves down by its pitch.
+  pitch_ = config_.camera.pitch_deg * kDegToRad;
+  max_elevation_ = (0.5 * config_.camera.vfov_deg + config_.camera.pitch_deg - config_.fov_margin_deg) * kDegToRad;
+  min_elevation_ = -(0.5 * config_.camera.vfov_deg - config_.camera.pitch_deg - config_.fov_margin_deg) * kDegToRad;
   for (double a : config_.fallback_rotations_deg) rotations_.push_back(a * kDegToRad);
   distances_.push_back(config_.delta_pose);
   std::vector<double> fractions = config_.fallback_distance_fractions;
@@ -54,8 +58,12 @@ Eigen::Vector3d ViewpointGenerator::direction(const VoxelStateGrid& grid, const 
   return norm > 1e-9 ? Eigen::Vector3d(sum / norm) : Eigen::Vector3d::Zero();
 }
 
+double ViewpointGenerator::axisCos(const Eigen::Vector3d& dir) const {
+  return std::cos(std::atan2(dir.z(), std::hypot(dir.x(), dir.y())) - pitch_);
+}
+
 Eigen::Vector3d ViewpointGenerator::clampedDirection(double azimuth, double elevation) const {
-  return fromAngles(azimuth, std::clamp(elevation, -max_elevation_, max_elevation_));
+  return fromAngles(azimuth, std::clamp(elevation, min_elevation_, max_elevation_));
 }
 
 Eigen::Vector3d ViewpointGenerator::clampedDirection(const Eigen::Vector3d& n_v) const {
@@ -99,7 +107,7 @@ std::vector<Eigen::Vector3d> ViewpointGenerator::candidateDirections(const Eigen
 
 std::vector<double> ViewpointGenerator::candidateDistances(double elevation) const {
   std::vector<double> out;
-  forEachDistance(std::cos(elevation), [&](double d) {
+  forEachDistance(std::cos(elevation - pitch_), [&](double d) {
     out.push_back(d);
     return false;
   });
@@ -116,9 +124,12 @@ bool ViewpointGenerator::acceptable(const VoxelRayCaster& rays, const CollisionM
     return false;
   }
   const Eigen::Vector3d d = rays.grid().voxelCenter(voxel) - p_W;
-  const double depth = std::hypot(d.x(), d.y());
+  const double horizontal = std::hypot(d.x(), d.y());
+  // Depth along the optical axis of the camera yawed towards the ISE.
+  const double depth = std::cos(pitch_) * horizontal - std::sin(pitch_) * d.z();
   if (depth < config_.camera.min_range || depth > config_.camera.max_range) return false;
-  if (std::abs(std::atan2(d.z(), depth)) > max_elevation_ + 1e-9) return false;
+  const double elevation = -std::atan2(d.z(), horizontal);  // of the pose above the ISE
+  if (elevation > max_elevation_ + 1e-9 || elevation < min_elevation_ - 1e-9) return false;
   uint64_t steps = 0;
   return rays.clear(p_W, voxel, &steps);
 }
@@ -139,7 +150,7 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
   };
   auto tryDirection = [&](const Eigen::Vector3d& dir) {
     double accepted = 0.0;
-    const bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
+    const bool found = forEachDistance(axisCos(dir), [&](double d) {
       ++search.tested;
       const Eigen::Vector3d p = v + d * dir;
       if (acceptable(rays, collision, bounds, voxel, p)) {
@@ -156,7 +167,7 @@ PoseSearch ViewpointGenerator::generate(const VoxelRayCaster& rays, const Collis
   // Approach poses: the usual distances, then farther ones, with the loose rays.
   auto tryApproach = [&](const Eigen::Vector3d& dir) {
     double accepted = 0.0;
-    bool found = forEachDistance(std::hypot(dir.x(), dir.y()), [&](double d) {
+    bool found = forEachDistance(axisCos(dir), [&](double d) {
       ++search.tested;
       accepted = d;
       return acceptable(*loose, collision, bounds, voxel, v + d * dir);

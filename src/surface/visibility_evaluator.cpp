@@ -8,11 +8,14 @@
 namespace surface_nbv {
 namespace {
 
-// Camera axes of a level camera with yaw: forward, right, down (world frame).
+// Camera axes of a camera with yaw on a level UAV, its mount pitched down by
+// `pitch` [rad]: forward, right, down (world frame).
 struct CameraAxes {
   Eigen::Vector3d forward, right, down;
-  explicit CameraAxes(double yaw)
-      : forward(std::cos(yaw), std::sin(yaw), 0.0), right(std::sin(yaw), -std::cos(yaw), 0.0), down(0.0, 0.0, -1.0) {}
+  CameraAxes(double yaw, double pitch)
+      : forward(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), -std::sin(pitch)),
+        right(std::sin(yaw), -std::cos(yaw), 0.0),
+        down(-std::sin(pitch) * std::cos(yaw), -std::sin(pitch) * std::sin(yaw), -std::cos(pitch)) {}
 };
 
 }  // namespace
@@ -25,10 +28,11 @@ VisibilityEvaluator::VisibilityEvaluator(const SurfaceConfig& config) : config_(
   cos_half_h_ = std::cos(h);
   sin_half_v_ = std::sin(v);
   cos_half_v_ = std::cos(v);
+  pitch_ = config_.camera.pitch_deg * M_PI / 180.0;
 }
 
 bool VisibilityEvaluator::inFrustum(const Viewpoint& viewpoint, const Eigen::Vector3d& p_W) const {
-  const CameraAxes axes(viewpoint.yaw);
+  const CameraAxes axes(viewpoint.yaw, pitch_);
   const Eigen::Vector3d d = p_W - viewpoint.position;
   const double z = d.dot(axes.forward);
   if (z < config_.camera.min_range || z > config_.camera.max_range) return false;
@@ -55,7 +59,7 @@ void VisibilityEvaluator::visibleFrom(const VoxelRayCaster& rays, const BlockInd
                                       const std::vector<Ise>& ises, const Viewpoint& viewpoint,
                                       std::vector<uint32_t>* visible, uint64_t* steps) const {
   const VoxelStateGrid& grid = rays.grid();
-  const CameraAxes axes(viewpoint.yaw);
+  const CameraAxes axes(viewpoint.yaw, pitch_);
   const Eigen::Vector3d& p = viewpoint.position;
   const VoxelRayCaster::Origin from = rays.origin(p);
   const double far = config_.camera.max_range, near = config_.camera.min_range;

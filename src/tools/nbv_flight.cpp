@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
   const ScriptedFlight flight(flight_config);
   const DepthCamera camera(camera_config);
   const DepthRenderer renderer(*scene, camera, threads);
-  const Transform T_B_C = opticalInBody();
+  const Transform T_B_C = opticalInBody(camera_config);
   TsdfConfig tsdf_config;
   tsdf_config.voxel_size = voxel;
   tsdf_config.threads = threads;

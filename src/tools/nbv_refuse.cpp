@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
   camera_config.noise_seed = config.camera.noise_seed + config.seed;
   const DepthCamera camera(camera_config);
   const DepthRenderer renderer(*scene, camera, config.threads);
-  const Transform T_B_C = opticalInBody();
+  const Transform T_B_C = opticalInBody(camera_config);
   const TsdfConfig& meshed = mesh_layer.map().config();
   std::printf("scene '%s': %zu triangles; config %s; voxel %.2f m, truncation %.3f m, mesh voxel %.3f m, "
               "mesh truncation %.3f m%s%s, "

@@ -1,4 +1,4 @@
-// Gaze while flying (gaze_yaw.h): which ISEs the level camera sees, the
+// Gaze while flying (gaze_yaw.h): which ISEs the camera sees, the
 // yaws a leg gets, and the explorer's use of them.
 #include "surface_nbv/planning/gaze_yaw.h"
 
@@ -8,6 +8,7 @@
 
 #include "planning_test_worlds.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/sim/scripted_flight.h"
 #include "surface_nbv/util/angles.h"
 
 using namespace surface_nbv;
@@ -49,6 +50,37 @@ TEST(GazeYaw, CountsOnlyTargetsInsideTheFrustumAndRange) {
   EXPECT_EQ(countVisible(c, at(0, 5, 2), nullptr, p, M_PI / 2), 0) << "its direction faces +x, away from p";
   const std::vector<GazeTarget> away{{Eigen::Vector3d(5, 0, 2), Eigen::Vector3d(1, 0, 0)}};
   EXPECT_EQ(countVisible(c, away, nullptr, p, 0.0), 0) << "p is behind the surface";
+}
+
+// The frustum of a mount pitched down 10 degrees, against the camera model
+// through the mount's transform.
+TEST(GazeYaw, APitchedCameraCountsWhatItsImageHolds) {
+  GazeConfig c;
+  c.camera.pitch_deg = 10.0;
+  const DepthCamera camera(c.camera);
+  const Eigen::Vector3d p(0, 0, 20);
+  const Transform T_C_W = (levelBodyPose(p, 0.0) * opticalInBody(c.camera)).inverse();
+  int seen = 0;
+  for (double x = 1.0; x <= 9.0; x += 0.5) {
+    for (double y = -7.0; y <= 7.0; y += 0.5) {
+      for (double z = 13.0; z <= 25.0; z += 0.5) {
+        const Eigen::Vector3d t(x, y, z);
+        const Eigen::Vector3d p_C = T_C_W * t;
+        const bool edge = std::abs(std::abs(p_C.x() / p_C.z()) - 1.0) < 1e-9 ||
+                          std::abs(std::abs(p_C.y() / p_C.z()) - std::tan(M_PI / 6)) < 1e-9;
+        if (edge) continue;
+        const std::vector<GazeTarget> one{{t, (p - t).normalized()}};
+        const bool expected = camera.sees(p_C);
+        ASSERT_EQ(countVisible(c, one, nullptr, p, 0.0), expected ? 1 : 0) << t.transpose();
+        seen += expected;
+      }
+    }
+  }
+  EXPECT_GT(seen, 1000);
+  // 35 degrees down: outside the level camera's FOV, inside the pitched one's.
+  const std::vector<GazeTarget> low{{Eigen::Vector3d(5, 0, 20 - 5 * std::tan(35 * M_PI / 180)), Eigen::Vector3d(-1, 0, 0)}};
+  EXPECT_EQ(countVisible(c, low, nullptr, p, 0.0), 1);
+  EXPECT_EQ(countVisible(GazeConfig(), low, nullptr, p, 0.0), 0);
 }
 
 TEST(GazeYaw, LegLooksAtTheTargetsItPasses) {

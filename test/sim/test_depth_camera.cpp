@@ -261,6 +261,19 @@ TEST(DepthCamera, ValidateRejectsEachBadField) {
   c = CameraConfig();
   c.noise_k = nan;
   expectRejected(c, "camera/noise_k");
+
+  c = CameraConfig();
+  c.pitch_deg = 60.0;  // the 60 degree FOV's upper edge would pass the vertical
+  expectRejected(c, "camera/pitch_deg");
+  c = CameraConfig();
+  c.pitch_deg = -60.0;
+  expectRejected(c, "camera/pitch_deg");
+  c = CameraConfig();
+  c.pitch_deg = nan;
+  expectRejected(c, "camera/pitch_deg");
+  c = CameraConfig();
+  c.pitch_deg = 59.9;
+  EXPECT_TRUE(c.validate());
 }
 
 TEST(DepthCamera, ValidateAcceptsBoundaryValues) {

@@ -100,3 +100,18 @@ TEST(OpticalInBody, LooksForwardWithImageDown) {
   EXPECT_NEAR(T_B_C.linear().determinant(), 1.0, 1e-12);
   EXPECT_TRUE(T_B_C.translation().isApprox(Eigen::Vector3d(0.1, 0.0, -0.05)));
 }
+
+TEST(OpticalInBody, APitchedMountLooksDownByItsPitch) {
+  CameraConfig camera;
+  camera.pitch_deg = 5.73;  // RotorS's VI-sensor: 0.1 rad
+  const Transform T_B_C = opticalInBody(camera);
+  const double p = 5.73 * M_PI / 180.0;
+  const Eigen::Vector3d forward = T_B_C.linear() * Eigen::Vector3d::UnitZ();
+  EXPECT_TRUE(forward.isApprox(Eigen::Vector3d(std::cos(p), 0.0, -std::sin(p)))) << forward.transpose();
+  EXPECT_TRUE((T_B_C.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitY()));  // right stays level
+  EXPECT_NEAR(T_B_C.linear().determinant(), 1.0, 1e-12);
+  EXPECT_TRUE(T_B_C.translation().isZero());
+  // Negative is up; zero is the level mount.
+  EXPECT_GT((opticalInBody(Eigen::Vector3d::Zero(), -10.0).linear() * Eigen::Vector3d::UnitZ()).z(), 0.0);
+  EXPECT_TRUE(opticalInBody(CameraConfig()).isApprox(opticalInBody()));
+}

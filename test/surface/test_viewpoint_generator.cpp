@@ -201,6 +201,43 @@ TEST(ViewpointGenerator, VerticalDirectionIsTiltedIntoTheVerticalFov) {
   EXPECT_FALSE(generator.acceptable(rays, *scene.collision, bounds, v, at(28.1)));
 }
 
+// A mount pitched down moves the usable elevations down with the FOV: the
+// pose may sit higher above its ISE and less far below it.
+TEST(ViewpointGenerator, APitchedCameraShiftsTheUsableElevations) {
+  WallScene scene;
+  scene.refresh();
+  SurfaceConfig config = testSurfaceConfig();
+  config.camera.pitch_deg = 10.0;
+  const ViewpointGenerator generator(config);
+  const VoxelRayCaster rays(scene.extractor.states(), true);
+  const Eigen::Vector3i v(12, 30, 15);
+  const Eigen::Vector3d centre = scene.map.voxelCenter(v);
+  const AlignedBox& bounds = scene.map.config().bounds;
+  auto at = [&](double elevation_deg) -> Eigen::Vector3d {
+    return centre + 3.0 * Eigen::Vector3d(std::cos(elevation_deg * kDeg), 0, std::sin(elevation_deg * kDeg));
+  };
+  // 30 + 10 - 2 degrees above, 30 - 10 - 2 below.
+  EXPECT_TRUE(generator.acceptable(rays, *scene.collision, bounds, v, at(37.9)));
+  EXPECT_FALSE(generator.acceptable(rays, *scene.collision, bounds, v, at(38.1)));
+  EXPECT_TRUE(generator.acceptable(rays, *scene.collision, bounds, v, at(-17.9)));
+  EXPECT_FALSE(generator.acceptable(rays, *scene.collision, bounds, v, at(-18.1)));
+  // Straight up is tilted to the new upper edge.
+  Viewpoint pose;
+  ASSERT_TRUE(generator.generate(rays, *scene.collision, bounds, v, Eigen::Vector3d::UnitZ(), &pose).found);
+  const Eigen::Vector3d d = pose.position - centre;
+  EXPECT_NEAR(std::asin(d.z() / d.norm()), 38.0 * kDeg, 1e-9);
+  // The ISE at a pose 38 degrees above lies inside the pitched camera's image.
+  const DepthCamera camera(config.camera);
+  EXPECT_TRUE(camera.sees(pose.cameraPose(config.camera).inverse() * centre));
+  // The min range is along the pitched optical axis: 1.6 m of depth is at
+  // 1.6 / cos(38 - 10 degrees) from the ISE.
+  const double closest = config.camera.min_range / std::cos(28.0 * kDeg);
+  EXPECT_TRUE(generator.acceptable(rays, *scene.collision, bounds, v,
+                                   centre + (closest + 1e-6) * Eigen::Vector3d(std::cos(38 * kDeg), 0, std::sin(38 * kDeg))));
+  EXPECT_FALSE(generator.acceptable(rays, *scene.collision, bounds, v,
+                                    centre + (closest - 1e-3) * Eigen::Vector3d(std::cos(38 * kDeg), 0, std::sin(38 * kDeg))));
+}
+
 TEST(ViewpointGenerator, CandidateOrder) {
   SurfaceConfig config = testSurfaceConfig();
   config.fallback_rotations_deg = {30.0};

@@ -71,29 +71,43 @@ TEST(VisibilityEvaluator, UnknownSpaceHidesOnlyWhenConfigured) {
   EXPECT_EQ(corridor.visible(config), (std::vector<uint32_t>{0, 1, 6}));
 }
 
+// The evaluator's frustum against the camera model through the mount's
+// transform, level and pitched (RotorS's 0.1 rad down, and 20 degrees up).
 TEST(VisibilityEvaluator, FrustumAgreesWithTheCameraModel) {
-  const SurfaceConfig config = testSurfaceConfig();
-  const VisibilityEvaluator evaluator(config);
-  const DepthCamera camera(config.camera);
-  std::mt19937 rng(23);
-  std::uniform_real_distribution<double> u(-10.0, 10.0), yaw(-M_PI, M_PI);
-  int inside = 0;
-  for (int i = 0; i < 20000; ++i) {
-    Viewpoint q;
-    q.position = Eigen::Vector3d(u(rng), u(rng), u(rng));
-    q.yaw = yaw(rng);
-    const Eigen::Vector3d p = q.position + Eigen::Vector3d(u(rng), u(rng), 0.5 * u(rng));
-    const Eigen::Vector3d p_C = q.cameraPose().inverse() * p;
-    const bool expected = camera.sees(p_C);
-    // Points within 1e-9 of a frustum face may go either way.
-    const bool edge = std::abs(std::abs(p_C.x() / p_C.z()) - 1.0) < 1e-9 ||
-                      std::abs(std::abs(p_C.y() / p_C.z()) - std::tan(M_PI / 6)) < 1e-9;
-    if (!edge) {
-      ASSERT_EQ(evaluator.inFrustum(q, p), expected) << p_C.transpose();
+  for (double pitch_deg : {0.0, 5.73, -20.0}) {
+    SurfaceConfig config = testSurfaceConfig();
+    config.camera.pitch_deg = pitch_deg;
+    const VisibilityEvaluator evaluator(config);
+    const DepthCamera camera(config.camera);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> u(-10.0, 10.0), yaw(-M_PI, M_PI);
+    int inside = 0, below_level = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Viewpoint q;
+      q.position = Eigen::Vector3d(u(rng), u(rng), u(rng));
+      q.yaw = yaw(rng);
+      const Eigen::Vector3d p = q.position + Eigen::Vector3d(u(rng), u(rng), 0.5 * u(rng));
+      const Eigen::Vector3d p_C = q.cameraPose(config.camera).inverse() * p;
+      const bool expected = camera.sees(p_C);
+      // Points within 1e-9 of a frustum face may go either way.
+      const bool edge = std::abs(std::abs(p_C.x() / p_C.z()) - 1.0) < 1e-9 ||
+                        std::abs(std::abs(p_C.y() / p_C.z()) - std::tan(M_PI / 6)) < 1e-9;
+      if (!edge) {
+        ASSERT_EQ(evaluator.inFrustum(q, p), expected) << "pitch " << pitch_deg << ": " << p_C.transpose();
+      }
+      inside += expected ? 1 : 0;
+      // Seen below the level camera's lower edge (30 degrees down).
+      const Eigen::Vector3d d = p - q.position;
+      below_level += expected && d.z() < -std::tan(M_PI / 6) * d.head<2>().norm() ? 1 : 0;
     }
-    inside += expected ? 1 : 0;
+    EXPECT_GT(inside, 500) << pitch_deg;
+    // Only a camera pitched down sees below the level camera's FOV.
+    if (pitch_deg > 0.0) {
+      EXPECT_GT(below_level, 0);
+    } else {
+      EXPECT_EQ(below_level, 0) << pitch_deg;
+    }
   }
-  EXPECT_GT(inside, 500);
 }
 
 TEST(VisibilityEvaluator, SameSetsForAnyThreadCount) {

@@ -2,7 +2,8 @@
 // surface in the camera's view, so the UAV scans ISEs it passes instead of
 // looking down the corridor it flies through.
 //
-// The level camera at p with yaw psi sees an ISE v when the depth of v on
+// The camera at p with yaw psi (on a level UAV, pitched down by its mount's
+// CameraConfig::pitch_deg) sees an ISE v when the depth of v on
 // the optical axis is in [min_range, max_range], v lies inside the
 // horizontal and vertical FOV, p is on the free side of v (the ISE's
 // direction n_v of eq. 2 points towards p) and the segment from p to v stays

@@ -24,6 +24,10 @@ struct CameraConfig {
   // Stereo-like noise: sigma = noise_k * z^2 [1/m]; 0 disables it.
   double noise_k = 0.0;
   uint64_t noise_seed = 1;
+  // Mount pitch [deg] about the body's y axis, positive down: the UAV flies
+  // level, so the optical axis stays this far below the horizon (RotorS
+  // mounts its VI-sensor 0.1 rad = 5.73 deg down). |pitch| < 90 - vfov / 2.
+  double pitch_deg = 0.0;
 
   // Names the first bad key, e.g. "camera/hfov_deg expected in (0, 180)".
   Status validate() const;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
+#include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -49,9 +50,12 @@ class ScriptedFlight {
   double total_length_ = 0.0;
 };
 
-// Camera optical frame (z forward, x right, y down) on a level, forward-facing
-// mount at `offset` in base_link.
-Transform opticalInBody(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero());
+// Camera optical frame (z forward, x right, y down) on a forward-facing mount
+// at `offset` in base_link, pitched `pitch_deg` down about the body's y axis
+// (CameraConfig::pitch_deg; 0 is level).
+Transform opticalInBody(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero(), double pitch_deg = 0.0);
+// The same at the origin of base_link, for a camera's config.
+Transform opticalInBody(const CameraConfig& camera);
 
 // T_W_B of a level base_link at p_W turned by yaw about world z.
 Transform levelBodyPose(const Eigen::Vector3d& p_W, double yaw);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
+#include "surface_nbv/sim/depth_camera.h"
 
 namespace surface_nbv {
 
@@ -29,8 +30,9 @@ struct Ise {
   bool approach = false;
 };
 
-// A 4-DOF configuration [x, y, z, yaw]: the camera at `position`, level,
-// looking along `yaw` (0 = +x, counter-clockwise about +z).
+// A 4-DOF configuration [x, y, z, yaw]: the camera at `position` on a level
+// UAV, looking along `yaw` (0 = +x, counter-clockwise about +z), pitched down
+// by the camera's mount pitch (CameraConfig::pitch_deg).
 struct Viewpoint {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double yaw = 0.0;
@@ -43,8 +45,8 @@ struct Viewpoint {
   // space the viewpoint faces. 1 when not evaluated.
   double unknown_fraction = 1.0;
 
-  // T_W_C of the camera's optical frame (z forward, x right, y down).
-  Transform cameraPose() const;
+  // T_W_C of the optical frame (z forward, x right, y down) of `camera`'s mount.
+  Transform cameraPose(const CameraConfig& camera) const;
 };
 
 struct Cluster {

@@ -4,8 +4,8 @@
 // outside the grid count as not occupied. A pose p = v + d * dir is
 // acceptable when p lies inside the bounds and is collision-free with the
 // configured radius (the CollisionMap: unknown space is an obstacle), and
-// the level camera yawed to look at v has v inside its vertical FOV (less
-// the margin) and depth range with a clear line of sight (VoxelRayCaster).
+// the camera yawed to look at v (on a level UAV, its mount's pitch down) has
+// v inside its vertical FOV (less the margin) and depth range with a clear line of sight (VoxelRayCaster).
 // Candidates in order: dir = n_v with its elevation clamped to the usable
 // vertical FOV; then n_v turned by +a and -a in yaw, then in elevation, for
 // each fall-back rotation a (from 8 yaws 45 degrees apart when n_v is
@@ -60,17 +60,20 @@ class ViewpointGenerator {
   std::vector<Eigen::Vector3d> candidateDirections(const Eigen::Vector3d& n_v) const;
   // Candidate distances along a direction of elevation `elevation` [rad], in order.
   std::vector<double> candidateDistances(double elevation) const;
+  // Cosine of the angle between the optical axis of the camera at v + d dir,
+  // yawed towards v, and the line back to v: the ISE's depth is d times it.
+  double axisCos(const Eigen::Vector3d& dir) const;
 
  private:
   // The direction with this azimuth and the elevation clamped to the usable FOV.
   Eigen::Vector3d clampedDirection(double azimuth, double elevation) const;
   Eigen::Vector3d clampedDirection(const Eigen::Vector3d& n_v) const;
   // Calls fn(d) for the candidate distances along a direction whose
-  // horizontal part has length cos_elevation, in order, until fn returns
-  // true; returns whether it did. The ISE's depth is d cos(elevation).
+  // axisCos() is axis_cos, in order, until fn returns true; returns whether
+  // it did. The last puts the ISE at the camera's min range.
   template <typename Fn>
-  bool forEachDistance(double cos_elevation, Fn&& fn) const {
-    const double closest = config_.camera.min_range / cos_elevation + 1e-6;
+  bool forEachDistance(double axis_cos, Fn&& fn) const {
+    const double closest = config_.camera.min_range / axis_cos + 1e-6;
     double last = std::numeric_limits<double>::infinity();
     for (double d : distances_) {
       if (d < closest) break;
@@ -81,7 +84,8 @@ class ViewpointGenerator {
   }
 
   SurfaceConfig config_;
-  double max_elevation_;          // rad, |elevation| of a usable direction
+  double pitch_;                  // rad, the mount's pitch down
+  double min_elevation_, max_elevation_;  // rad, elevations of a usable direction (ISE to pose)
   std::vector<double> rotations_; // rad
   std::vector<double> distances_; // delta_pose and its fractions, descending
   std::vector<double> approach_distances_;  // beyond delta_pose up to the approach range, ascending

@@ -41,6 +41,7 @@ class VisibilityEvaluator {
 
   SurfaceConfig config_;
   double tan_half_h_, tan_half_v_, sin_half_h_, cos_half_h_, sin_half_v_, cos_half_v_;
+  double pitch_;  // rad, the mount's pitch down
 };
 
 }  // namespace surface_nbv
