@@ -189,6 +189,7 @@ void TsdfMapperServer::integrate(const Frame& f, const Transform& T_W_S) {
                config_.start_free_radius);
     }
   }
+  if (f.camera) pitch_monitor_.add(T_W_S);
   const auto t0 = std::chrono::steady_clock::now();
   IntegrationStats s;
   Status layer;
@@ -273,6 +274,16 @@ void TsdfMapperServer::publishStats() {
   stats_.set("blocks", map_.numBlocks());
   stats_.set("known_voxels", known);
   stats_.set("pending_frames", pending_.size());
+  const bool mismatch = pitch_monitor_.mismatch(config_.camera.pitch_deg);
+  stats_.set("camera_pitch_mismatch", mismatch ? 1 : 0);
+  if (mismatch) {
+    ROS_WARN_THROTTLE(30.0,
+                      "tsdf_mapper: the depth frames' optical axis is %.1f deg below the horizon on average (%zu "
+                      "frames), %s/camera/pitch_deg is %.1f: the planner's views assume the latter; set it to the "
+                      "camera's mount pitch",
+                      pitch_monitor_.meanPitchDeg(), pitch_monitor_.frames(), config_.shared_namespace.c_str(),
+                      config_.camera.pitch_deg);
+  }
 }
 
 bool TsdfMapperServer::saveMap(surface_nbv::FilePath::Request& req, surface_nbv::FilePath::Response& res) {

@@ -129,6 +129,17 @@ TEST(MissionConfig, ReadsTheHeadRankingsDecay) {
   EXPECT_NE(c.validate().message().find("head_lambda"), std::string::npos) << c.validate().message();
 }
 
+TEST(MissionConfig, ReadsTheCameraMountsPitch) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(writeTemp("pitch.yaml", "nbv:\n  camera: {pitch_deg: 5.73}\n"), &c).ok());
+  EXPECT_DOUBLE_EQ(c.camera.pitch_deg, 5.73);
+  EXPECT_DOUBLE_EQ(c.surface.camera.pitch_deg, 5.73);  // eq. 2 and C_q use the same mount
+  EXPECT_DOUBLE_EQ(c.explorer.gaze.camera.pitch_deg, 5.73);
+  EXPECT_TRUE(c.validate().ok());
+  ASSERT_TRUE(loadMissionConfig(writeTemp("pitch_far.yaml", "nbv:\n  camera: {pitch_deg: 75.0}\n"), &c).ok());
+  EXPECT_NE(c.validate().message().find("camera/pitch_deg"), std::string::npos) << c.validate().message();
+}
+
 TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   MissionConfig c;
   Status s = loadMissionConfig(writeTemp("typo.yaml", "mission:\n  sped: 0.5\n"), &c);
@@ -299,6 +310,42 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   EXPECT_LT(first, 0.9 * e2.coverage.coverage());  // 20 s in, far from done
   EvalResult unprepared;
   EXPECT_FALSE(Evaluator(eval).scoreReconstruction(checkpoints.back().mesh, &unprepared).ok());
+}
+
+// A camera mounted 0.1 rad down, as RotorS's VI-sensor: the same mission
+// flies otherwise (the pitch reaches the renderer and the planner) and still
+// completes the box.
+TEST(Mission, APitchedCameraCompletesTheBox) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &c).ok());
+  c.progress_period = 30.0;
+  c.path.iteration_budget = 20000;
+  c.path.time_budget = 60.0;
+  TriangleMesh mesh;
+  ASSERT_TRUE(loadScene(c.scene, &mesh).ok());
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  MissionConfig pitched = c;
+  pitched.camera.pitch_deg = pitched.surface.camera.pitch_deg = pitched.explorer.gaze.camera.pitch_deg = 5.73;
+  ASSERT_TRUE(pitched.validate().ok());
+  MissionRunner level_runner(c, *scene), pitched_runner(pitched, *scene);
+  const MissionResult level = level_runner.run(), r = pitched_runner.run();
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_TRUE(r.completed) << r.end_reason;
+  EXPECT_NE(r.flown, level.flown);
+  MeshExtractor mesher;
+  mesher.update(pitched_runner.map());
+  EvalConfig eval;
+  eval.voxel_size = c.tsdf.voxel_size;
+  eval.min_range = c.camera.min_range;
+  eval.max_range = c.camera.max_range;
+  eval.threads = 2;
+  EvalResult e;
+  ASSERT_TRUE(Evaluator(eval).evaluate(mesh, mesher.mesh(), &e).ok());
+  std::printf("box mission, camera 5.73 deg down: %.1f m, coverage %.2f %%, RMSE %.2f cm\n", r.path_length,
+              100.0 * e.coverage.coverage(), 100.0 * e.error_stats.rmse);
+  EXPECT_GT(e.coverage.coverage(), 0.95);
+  EXPECT_LT(e.error_stats.rmse, c.tsdf.voxel_size);
 }
 
 }  // namespace

@@ -107,6 +107,10 @@ TEST(TsdfMapperLoop, MirrorFollowsAndMeshLiesOnTheBox) {
     EXPECT_GT(counter(stats, "frames_integrated"), 300u);
     EXPECT_EQ(counter(stats, "dropped_bad_image"), 2u);
     EXPECT_EQ(counter(stats, "dropped_integration"), 0u);
+    // The level camera agrees with the config's camera/pitch_deg (0).
+    EXPECT_TRUE(std::any_of(stats.counters.begin(), stats.counters.end(),
+                            [](const auto& c) { return c.name == "camera_pitch_mismatch"; }));
+    EXPECT_EQ(counter(stats, "camera_pitch_mismatch"), 0u);
   }
 
   ros::ServiceClient export_mesh = nh.serviceClient<FilePath>("tsdf_mapper/export_mesh");

@@ -28,6 +28,7 @@
 #include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/ros/mapper_params.h"
+#include "surface_nbv/map/mount_pitch_monitor.h"
 #include "surface_nbv/ros/stats_reporter.h"
 
 namespace surface_nbv {
@@ -86,6 +87,7 @@ class TsdfMapperServer {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   StatsReporter stats_;
+  MountPitchMonitor pitch_monitor_;  // the image frames' optical axis against camera/pitch_deg
   std::shared_ptr<DepthCamera> camera_;
   std::deque<Frame> pending_;
   ros::Time newest_stamp_;
