@@ -41,6 +41,32 @@ void expectTable1(const MissionConfig& c, const Table1& t) {
   EXPECT_DOUBLE_EQ(c.explorer.graph.lambda_ic, t.lambda_ic);
 }
 
+// config/box.yaml and its scene; legs bounded by roadmap samples, not wall
+// time, so that a repeated mission flies the same flight.
+struct BoxMission {
+  MissionConfig config;
+  TriangleMesh mesh;
+  std::unique_ptr<RaycastScene> scene;
+};
+
+void loadBoxMission(BoxMission* box) {
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &box->config).ok());
+  box->config.progress_period = 30.0;
+  box->config.path.iteration_budget = 20000;
+  box->config.path.time_budget = 60.0;
+  ASSERT_TRUE(loadScene(box->config.scene, &box->mesh).ok());
+  ASSERT_TRUE(RaycastScene::create(box->mesh, &box->scene).ok());
+}
+
+EvalConfig boxEvalConfig(const MissionConfig& c) {
+  EvalConfig eval;
+  eval.voxel_size = c.tsdf.voxel_size;
+  eval.min_range = c.camera.min_range;
+  eval.max_range = c.camera.max_range;
+  eval.threads = 2;
+  return eval;
+}
+
 TEST(MissionConfig, ReadsTheSharedPlantParameters) {
   MissionConfig c;
   ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());
@@ -101,6 +127,11 @@ TEST(MissionConfig, EveryShippedConfigLoadsAndTable2ScenesKeepTheirSettings) {
   }
   // The statue's comparison counts a climb twice (session 26).
   EXPECT_DOUBLE_EQ(statue.explorer.head_vertical_scale, 2.0);
+  // The plant's camera is mounted as RotorS's VI-sensor, the statue's level
+  // (session 27); the planner and the renderer share the mount.
+  EXPECT_DOUBLE_EQ(plant.camera.pitch_deg, 5.73);
+  EXPECT_DOUBLE_EQ(plant.surface.camera.pitch_deg, 5.73);
+  EXPECT_DOUBLE_EQ(statue.camera.pitch_deg, 0.0);
 }
 
 // The view rays (Viewpoint::unknown_fraction) are cast only for an option
@@ -209,22 +240,17 @@ TEST(MissionConfig, ReadsTheTruncationDistanceAndRefusesOneBelowAVoxel) {
 // A whole mission on the 4 m box: it must end by itself (no ISE of C_ins
 // left) with the box's surface observed, and repeat exactly.
 TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
-  MissionConfig c;
-  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &c).ok());
-  c.progress_period = 30.0;
-  // Legs bounded by roadmap samples, not wall time: the repeat below must be exact.
-  c.path.iteration_budget = 20000;
-  c.path.time_budget = 60.0;
-  TriangleMesh mesh;
-  ASSERT_TRUE(loadScene(c.scene, &mesh).ok());
-  std::unique_ptr<RaycastScene> scene;
-  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  BoxMission box;
+  ASSERT_NO_FATAL_FAILURE(loadBoxMission(&box));
+  MissionConfig& c = box.config;
+  const TriangleMesh& mesh = box.mesh;
+  const RaycastScene& scene = *box.scene;
   SurfaceCloud cloud;
   ASSERT_TRUE(SurfaceSampler(0.2, 3).sample(mesh, 100000, &cloud).ok());
   std::vector<Eigen::Vector3d> probe;
   for (const Eigen::Vector3f& p : cloud.points)
     if (p.z() > 0.05) probe.push_back(p.cast<double>());  // the ground under the box is never seen
-  MissionRunner runner(c, *scene);
+  MissionRunner runner(c, scene);
   runner.setProbePoints(probe);
   const MissionResult r = runner.run();
   ASSERT_TRUE(r.status.ok()) << r.status.message();
@@ -237,11 +263,7 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   // The real figure: nbv_evaluate's coverage of the reconstructed mesh.
   MeshExtractor mesher;
   mesher.update(runner.map());
-  EvalConfig eval;
-  eval.voxel_size = c.tsdf.voxel_size;
-  eval.min_range = c.camera.min_range;
-  eval.max_range = c.camera.max_range;
-  eval.threads = 2;
+  const EvalConfig eval = boxEvalConfig(c);
   EvalResult e;
   ASSERT_TRUE(Evaluator(eval).evaluate(mesh, mesher.mesh(), &e).ok());
   std::printf("box mission coverage %.2f %%, RMSE %.2f cm\n", 100.0 * e.coverage.coverage(), 100.0 * e.error_stats.rmse);
@@ -256,7 +278,7 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
   // must not change (planning never reads it), and its mesh covers the box.
   MissionConfig layered = c;
   layered.tsdf.mesh_truncation = 2.0 * c.tsdf.voxel_size;
-  MissionRunner again(layered, *scene);
+  MissionRunner again(layered, scene);
   // With the coverage over time (nbv_mission --coverage-every): every 20 s of
   // flight and at the end, the layer holds every frame up to then.
   struct Checkpoint {
@@ -316,32 +338,22 @@ TEST(Mission, BoxMissionCompletesByItselfAndObservesTheBox) {
 // flies otherwise (the pitch reaches the renderer and the planner) and still
 // completes the box.
 TEST(Mission, APitchedCameraCompletesTheBox) {
-  MissionConfig c;
-  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/box.yaml", &c).ok());
-  c.progress_period = 30.0;
-  c.path.iteration_budget = 20000;
-  c.path.time_budget = 60.0;
-  TriangleMesh mesh;
-  ASSERT_TRUE(loadScene(c.scene, &mesh).ok());
-  std::unique_ptr<RaycastScene> scene;
-  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  BoxMission box;
+  ASSERT_NO_FATAL_FAILURE(loadBoxMission(&box));
+  const MissionConfig& c = box.config;
   MissionConfig pitched = c;
   pitched.camera.pitch_deg = pitched.surface.camera.pitch_deg = pitched.explorer.gaze.camera.pitch_deg = 5.73;
   ASSERT_TRUE(pitched.validate().ok());
-  MissionRunner level_runner(c, *scene), pitched_runner(pitched, *scene);
+  MissionRunner level_runner(c, *box.scene), pitched_runner(pitched, *box.scene);
   const MissionResult level = level_runner.run(), r = pitched_runner.run();
   ASSERT_TRUE(r.status.ok()) << r.status.message();
   EXPECT_TRUE(r.completed) << r.end_reason;
   EXPECT_NE(r.flown, level.flown);
   MeshExtractor mesher;
   mesher.update(pitched_runner.map());
-  EvalConfig eval;
-  eval.voxel_size = c.tsdf.voxel_size;
-  eval.min_range = c.camera.min_range;
-  eval.max_range = c.camera.max_range;
-  eval.threads = 2;
+  const EvalConfig eval = boxEvalConfig(c);
   EvalResult e;
-  ASSERT_TRUE(Evaluator(eval).evaluate(mesh, mesher.mesh(), &e).ok());
+  ASSERT_TRUE(Evaluator(eval).evaluate(box.mesh, mesher.mesh(), &e).ok());
   std::printf("box mission, camera 5.73 deg down: %.1f m, coverage %.2f %%, RMSE %.2f cm\n", r.path_length,
               100.0 * e.coverage.coverage(), 100.0 * e.error_stats.rmse);
   EXPECT_GT(e.coverage.coverage(), 0.95);
