@@ -35,7 +35,9 @@ TEST(MountPitchMonitor, TheMeanOfATiltingFlightFindsTheMount) {
     Transform T_W_B = levelBodyPose(Eigen::Vector3d::Zero(), yaw(rng));
     T_W_B.linear() = T_W_B.linear() * Eigen::AngleAxisd(tilt(rng) * M_PI / 180.0, Eigen::Vector3d::UnitY());
     monitor.add(T_W_B * opticalInBody(camera));
-    if (i == 10) EXPECT_FALSE(monitor.mismatch(0.0)) << "too few frames to tell";
+    if (i == 10) {
+      EXPECT_FALSE(monitor.mismatch(0.0)) << "too few frames to tell";
+    }
   }
   EXPECT_EQ(monitor.frames(), 600u);
   EXPECT_NEAR(monitor.meanPitchDeg(), 5.73, 1.0);
