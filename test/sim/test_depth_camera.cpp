@@ -1,8 +1,10 @@
 #include "surface_nbv/sim/depth_camera.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -202,78 +204,42 @@ void expectRejected(const CameraConfig& config, const std::string& key) {
 TEST(DepthCamera, ValidateRejectsEachBadField) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  CameraConfig c;
-
-  c = CameraConfig();
-  c.width = 0;
-  expectRejected(c, "camera/width");
-  c = CameraConfig();
-  c.width = -640;
-  expectRejected(c, "camera/width");
-  c = CameraConfig();
-  c.height = 0;
-  expectRejected(c, "camera/height");
-
-  c = CameraConfig();
-  c.hfov_deg = 180.0;
-  expectRejected(c, "camera/hfov_deg");
-  c = CameraConfig();
-  c.hfov_deg = 0.0;
-  expectRejected(c, "camera/hfov_deg");
-  c = CameraConfig();
-  c.hfov_deg = nan;
-  expectRejected(c, "camera/hfov_deg");
-
-  c = CameraConfig();
-  c.vfov_deg = nan;
-  expectRejected(c, "camera/vfov_deg");
-  c = CameraConfig();
-  c.vfov_deg = 200.0;
-  expectRejected(c, "camera/vfov_deg");
-
-  c = CameraConfig();
-  c.min_range = -0.1;
-  expectRejected(c, "camera/min_range");
-  c = CameraConfig();
-  c.min_range = nan;
-  expectRejected(c, "camera/min_range");
-
-  c = CameraConfig();
-  c.max_range = c.min_range;
-  expectRejected(c, "camera/max_range");
-  c = CameraConfig();
-  c.max_range = 1.0;
-  expectRejected(c, "camera/max_range");
-  c = CameraConfig();
-  c.max_range = inf;
-  expectRejected(c, "camera/max_range");
-
-  c = CameraConfig();
-  c.rate_hz = 0.0;
-  expectRejected(c, "camera/rate_hz");
-  c = CameraConfig();
-  c.rate_hz = -30.0;
-  expectRejected(c, "camera/rate_hz");
-
-  c = CameraConfig();
-  c.noise_k = -0.01;
-  expectRejected(c, "camera/noise_k");
-  c = CameraConfig();
-  c.noise_k = nan;
-  expectRejected(c, "camera/noise_k");
-
-  c = CameraConfig();
-  c.pitch_deg = 60.0;  // the 60 degree FOV's upper edge would pass the vertical
-  expectRejected(c, "camera/pitch_deg");
-  c = CameraConfig();
-  c.pitch_deg = -60.0;
-  expectRejected(c, "camera/pitch_deg");
-  c = CameraConfig();
-  c.pitch_deg = nan;
-  expectRejected(c, "camera/pitch_deg");
-  c = CameraConfig();
-  c.pitch_deg = 59.9;
-  EXPECT_TRUE(c.validate());
+  // One bad field per row, the rest at their defaults.
+  struct Bad {
+    const char* key;
+    std::function<void(CameraConfig*)> set;
+  };
+  const std::vector<Bad> rows = {
+      {"camera/width", [](CameraConfig* c) { c->width = 0; }},
+      {"camera/width", [](CameraConfig* c) { c->width = -640; }},
+      {"camera/height", [](CameraConfig* c) { c->height = 0; }},
+      {"camera/hfov_deg", [](CameraConfig* c) { c->hfov_deg = 180.0; }},
+      {"camera/hfov_deg", [](CameraConfig* c) { c->hfov_deg = 0.0; }},
+      {"camera/hfov_deg", [&](CameraConfig* c) { c->hfov_deg = nan; }},
+      {"camera/vfov_deg", [&](CameraConfig* c) { c->vfov_deg = nan; }},
+      {"camera/vfov_deg", [](CameraConfig* c) { c->vfov_deg = 200.0; }},
+      {"camera/min_range", [](CameraConfig* c) { c->min_range = -0.1; }},
+      {"camera/min_range", [&](CameraConfig* c) { c->min_range = nan; }},
+      {"camera/max_range", [](CameraConfig* c) { c->max_range = c->min_range; }},
+      {"camera/max_range", [](CameraConfig* c) { c->max_range = 1.0; }},
+      {"camera/max_range", [&](CameraConfig* c) { c->max_range = inf; }},
+      {"camera/rate_hz", [](CameraConfig* c) { c->rate_hz = 0.0; }},
+      {"camera/rate_hz", [](CameraConfig* c) { c->rate_hz = -30.0; }},
+      {"camera/noise_k", [](CameraConfig* c) { c->noise_k = -0.01; }},
+      {"camera/noise_k", [&](CameraConfig* c) { c->noise_k = nan; }},
+      // The 60 degree FOV's edge would pass the vertical.
+      {"camera/pitch_deg", [](CameraConfig* c) { c->pitch_deg = 60.0; }},
+      {"camera/pitch_deg", [](CameraConfig* c) { c->pitch_deg = -60.0; }},
+      {"camera/pitch_deg", [&](CameraConfig* c) { c->pitch_deg = nan; }},
+  };
+  for (const Bad& row : rows) {
+    CameraConfig c;
+    row.set(&c);
+    expectRejected(c, row.key);
+  }
+  CameraConfig steep;
+  steep.pitch_deg = 59.9;
+  EXPECT_TRUE(steep.validate());
 }
 
 TEST(DepthCamera, ValidateAcceptsBoundaryValues) {
