@@ -192,11 +192,8 @@ void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
   const Eigen::Vector3i g = collision_->gridCells();
   const double cell = collision_->cellSize();
   const double clearance = config_.path.collision_radius + cell;
-  // Elevations of a pose above its sample that keep the sample inside the
-  // vertical FOV, which the mount's pitch moves down.
-  const double pitch = config_.camera.pitch_deg;
-  const double max_elevation = (0.5 * config_.camera.vfov_deg + pitch - config_.vfov_margin_deg) * M_PI / 180.0;
-  const double min_elevation = -(0.5 * config_.camera.vfov_deg - pitch - config_.vfov_margin_deg) * M_PI / 180.0;
+  const double max_elevation = config_.camera.maxPoseElevationDeg(config_.vfov_margin_deg) * M_PI / 180.0;
+  const double min_elevation = config_.camera.minPoseElevationDeg(config_.vfov_margin_deg) * M_PI / 180.0;
   auto reachable = [&](const Eigen::Vector3d& p) {
     const Eigen::Vector3i c = ((p - config_.tsdf.bounds.min) / cell).array().floor().cast<int>();
     if (!((c.array() >= 0).all() && (c.array() < g.array()).all())) return false;

@@ -35,18 +35,19 @@ void candidates(const GazeConfig& c, const std::vector<GazeTarget>& targets, con
                 const Eigen::Vector3d& p, std::vector<Candidate>* out) {
   out->clear();
   const double half_v = 0.5 * c.camera.vfov_deg * kDeg, pitch = c.camera.pitch_deg * kDeg;
+  const double min_above = c.camera.minPoseElevationDeg() * kDeg, max_above = c.camera.maxPoseElevationDeg() * kDeg;
   const double tan_h = std::tan(0.5 * c.camera.hfov_deg * kDeg), cos_h = std::cos(0.5 * c.camera.hfov_deg * kDeg);
   const double corner = c.camera.max_range * std::sqrt(1.0 + tan_h * tan_h + std::tan(half_v) * std::tan(half_v));
   for (const GazeTarget& t : targets) {
     const Eigen::Vector3d d = t.position - p;
     const double h = d.head<2>().norm();
     // Necessary at some yaw: the depth is largest when the yaw faces the
-    // target; the frustum spans elevations [-half_v - pitch, half_v - pitch].
-    // A level camera's depth is at least h cos(hfov / 2) inside the FOV; a
-    // pitched one's distance at most the far corner's.
-    const double elevation = std::atan2(d.z(), h);
+    // target; p's elevation above it lies in the camera's window. A level
+    // camera's depth is at least h cos(hfov / 2) inside the FOV; a pitched
+    // one's distance at most the far corner's.
+    const double above = -std::atan2(d.z(), h);
     if (h * std::cos(pitch) - d.z() * std::sin(pitch) < c.camera.min_range) continue;
-    if (elevation > half_v - pitch + 1e-12 || elevation < -half_v - pitch - 1e-12) continue;
+    if (above < min_above - 1e-12 || above > max_above + 1e-12) continue;
     if (pitch == 0.0 ? h * cos_h > c.camera.max_range : d.norm() > corner) continue;
     if (t.direction.dot(-d) <= 0.0) continue;  // p is behind the surface
     if (map != nullptr && !lineOfSight(*map, p, t.position, c.end_margin)) continue;

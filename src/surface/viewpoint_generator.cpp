@@ -18,11 +18,9 @@ Eigen::Vector3d fromAngles(double azimuth, double elevation) {
 }  // namespace
 
 ViewpointGenerator::ViewpointGenerator(const SurfaceConfig& config) : config_(config) {
-  // A pose `e` above its ISE sees it `e` below the horizon: inside the vertical
-  // FOV, which a mount pitched down moves down by its pitch.
   pitch_ = config_.camera.pitch_deg * kDegToRad;
-  max_elevation_ = (0.5 * config_.camera.vfov_deg + config_.camera.pitch_deg - config_.fov_margin_deg) * kDegToRad;
-  min_elevation_ = -(0.5 * config_.camera.vfov_deg - config_.camera.pitch_deg - config_.fov_margin_deg) * kDegToRad;
+  max_elevation_ = config_.camera.maxPoseElevationDeg(config_.fov_margin_deg) * kDegToRad;
+  min_elevation_ = config_.camera.minPoseElevationDeg(config_.fov_margin_deg) * kDegToRad;
   for (double a : config_.fallback_rotations_deg) rotations_.push_back(a * kDegToRad);
   distances_.push_back(config_.delta_pose);
   std::vector<double> fractions = config_.fallback_distance_fractions;

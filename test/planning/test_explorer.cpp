@@ -58,6 +58,13 @@ void expectFree(const CollisionMap& map, const std::vector<Eigen::Vector4d>& pat
 
 const Eigen::Vector4d kUav(-4.0, -3.0, 2.5, 0.0);
 
+// The first decision of a fresh explorer with `config` on `world`'s map, from kUav.
+ExplorerDecision firstDecision(const ExplorerConfig& config, const WallWorld& world, const Frontier& f) {
+  Explorer explorer(config, pathConfig());
+  EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+  return explorer.update(f, kUav, false);
+}
+
 // Two clusters of two ISEs: a near one on the UAV's side of the WallWorld
 // wall and a far one behind it.
 Frontier nearAndBehindTheWall() {
@@ -371,9 +378,7 @@ TEST(Explorer, TurnLeadTurnsWhileFlyingInsteadOfInPlace) {
     config.travel_yaw = true;
     config.turn_distance = 1.5;
     config.turn_lead = lead;
-    Explorer explorer(config, pathConfig());
-    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-    const ExplorerDecision d = explorer.update(f, kUav, false);
+    const ExplorerDecision d = firstDecision(config, world, f);
     ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
     ASSERT_GE(d.path.size(), 3u);
     const Eigen::Vector2d step = (d.path[1] - d.path[0]).head<2>();
@@ -446,9 +451,7 @@ TEST(Explorer, ViewpointsFacingLittleUnknownWaitUntilTheTourRunsOut) {
   Frontier f = makeFrontier({{{-3, -2, 2.5}}, {{-3, 3, 2.5}}});
   f.viewpoints[0].unknown_fraction = 0.01;
   f.viewpoints[1].unknown_fraction = 0.5;
-  Explorer plain(ExplorerConfig(), pathConfig());
-  ASSERT_TRUE(plain.setMap(&world.collision(), world.bounds()).ok());
-  const ExplorerDecision near = plain.update(f, kUav, false);
+  const ExplorerDecision near = firstDecision(ExplorerConfig(), world, f);
   ASSERT_EQ(near.action, ExplorerAction::kFly);
   EXPECT_NEAR((near.target.head<3>() - Eigen::Vector3d(-3, -2, 2.5)).norm(), 0.0, 1e-9);
 
@@ -533,9 +536,7 @@ TEST(Explorer, HeadVerticalScaleMakesAClimbCostMoreThanAMoveAcross) {
     ExplorerConfig config;
     config.head_lookahead = 2;
     config.head_vertical_scale = scale;
-    Explorer explorer(config, pathConfig());
-    EXPECT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-    const ExplorerDecision d = explorer.update(f, kUav, false);
+    const ExplorerDecision d = firstDecision(config, world, f);
     EXPECT_EQ(d.action, ExplorerAction::kFly) << d.message;
     return d.target;
   };

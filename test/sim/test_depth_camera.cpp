@@ -242,6 +242,19 @@ TEST(DepthCamera, ValidateRejectsEachBadField) {
   EXPECT_TRUE(steep.validate());
 }
 
+// A pose may sit up to vfov / 2 + pitch above a point it sees and
+// vfov / 2 - pitch below it, less the margin.
+TEST(DepthCamera, PoseElevationWindowFollowsThePitch) {
+  CameraConfig c;  // 60 degrees vertical
+  EXPECT_DOUBLE_EQ(c.minPoseElevationDeg(), -30.0);
+  EXPECT_DOUBLE_EQ(c.maxPoseElevationDeg(), 30.0);
+  c.pitch_deg = 10.0;
+  EXPECT_DOUBLE_EQ(c.minPoseElevationDeg(), -20.0);
+  EXPECT_DOUBLE_EQ(c.maxPoseElevationDeg(), 40.0);
+  EXPECT_DOUBLE_EQ(c.minPoseElevationDeg(2.0), -18.0);
+  EXPECT_DOUBLE_EQ(c.maxPoseElevationDeg(2.0), 38.0);
+}
+
 TEST(DepthCamera, ValidateAcceptsBoundaryValues) {
   CameraConfig c;
   c.width = 1;

@@ -29,6 +29,12 @@ struct CameraConfig {
   // mounts its VI-sensor 0.1 rad = 5.73 deg down). |pitch| < 90 - vfov / 2.
   double pitch_deg = 0.0;
 
+  // Elevations [deg] of a pose above a point that keep the point inside the
+  // vertical FOV, `margin_deg` within its edges: the level UAV's camera looks
+  // up to vfov / 2 - pitch and down to vfov / 2 + pitch.
+  double minPoseElevationDeg(double margin_deg = 0.0) const { return -(0.5 * vfov_deg - pitch_deg - margin_deg); }
+  double maxPoseElevationDeg(double margin_deg = 0.0) const { return 0.5 * vfov_deg + pitch_deg - margin_deg; }
+
   // Names the first bad key, e.g. "camera/hfov_deg expected in (0, 180)".
   Status validate() const;
 };
