@@ -155,7 +155,9 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
 
   YamlSection sim(root["depth_sim"], "depth_sim");
   sim.get("scene", &c->scene.scene);
+  sim.get("scene_up_axis", &c->scene.transform.up_axis);
   sim.get("scene_scale", &c->scene.transform.scale);
+  sim.getVector("scene_fit_size", &c->scene.transform.fit_size);
   sim.getVector("scene_offset", &c->scene.transform.offset);
   sim.getVector("crop_min", &c->scene.transform.crop.min);
   sim.getVector("crop_max", &c->scene.transform.crop.max);

@@ -35,7 +35,9 @@ void readCameraConfig(ParamReader* reader, CameraConfig* c) {
 
 void readSceneConfig(ParamReader* reader, SceneConfig* c) {
   reader->get("scene", &c->scene);
+  reader->get("scene_up_axis", &c->transform.up_axis);
   reader->get("scene_scale", &c->transform.scale);
+  reader->get("scene_fit_size", &c->transform.fit_size);
   reader->get("scene_offset", &c->transform.offset);
   reader->get("crop_min", &c->transform.crop.min);
   reader->get("crop_max", &c->transform.crop.max);

@@ -1,9 +1,11 @@
 #include "surface_nbv/sim/mesh_io.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -53,7 +55,12 @@ Polygon clipAgainstPlane(const Polygon& poly, int axis, double bound, double sig
 }  // namespace
 
 Status MeshLoadOptions::validate() const {
+  if (up_axis != "z" && up_axis != "y") return Status::Error("up_axis expected 'z' or 'y', got '" + up_axis + "'");
   if (!std::isfinite(scale) || scale <= 0.0) return Status::Error("scale expected > 0, got " + std::to_string(scale));
+  if (!fit_size.allFinite() || (!fitsToBox() && !fit_size.isZero())) {
+    return Status::Error("fit_size expected three sizes > 0 (or all 0: no fit)");
+  }
+  if (fitsToBox() && scale != 1.0) return Status::Error("scale expected 1 with fit_size (the fit chooses the scale)");
   if (!offset.allFinite()) return Status::Error("offset expected finite");
   if (crop.min.hasNaN() || crop.max.hasNaN()) return Status::Error("crop box has NaN bounds");
   if (crop.empty()) return Status::Error("crop box is empty (min > max on some axis)");
@@ -98,9 +105,26 @@ TriangleMesh cropMesh(const TriangleMesh& mesh, const AlignedBox& box) {
   return compact;
 }
 
-void applyLoadOptions(const MeshLoadOptions& options, TriangleMesh* mesh) {
-  mesh->scaleAndOffset(options.scale, options.offset);
+double applyLoadOptions(const MeshLoadOptions& options, TriangleMesh* mesh) {
+  if (options.up_axis == "y") {
+    for (Eigen::Vector3f& v : mesh->vertices) v = Eigen::Vector3f(v.x(), -v.z(), v.y());
+  }
+  double scale = options.scale;
+  Eigen::Vector3d offset = options.offset;
+  if (options.fitsToBox() && !mesh->empty()) {
+    const AlignedBox box = mesh->bounds();
+    const Eigen::Vector3d extent = box.max - box.min;
+    double fit = std::numeric_limits<double>::infinity();
+    for (int axis = 0; axis < 3; ++axis) {
+      if (extent[axis] > 0.0) fit = std::min(fit, options.fit_size[axis] / extent[axis]);
+    }
+    if (std::isfinite(fit)) scale = fit;  // a single point keeps scale 1
+    const Eigen::Vector3d anchor(0.5 * (box.min.x() + box.max.x()), 0.5 * (box.min.y() + box.max.y()), box.min.z());
+    offset -= scale * anchor;
+  }
+  mesh->scaleAndOffset(scale, offset);
   if (options.hasCrop()) *mesh = cropMesh(*mesh, options.crop);
+  return scale;
 }
 
 Status loadMesh(const std::string& path, const MeshLoadOptions& options, TriangleMesh* mesh) {

@@ -21,14 +21,18 @@ Status loadScene(const SceneConfig& config, TriangleMesh* mesh) {
 }
 
 const std::vector<std::string>& sceneOptionNames() {
-  static const std::vector<std::string> names = {"scene", "scale", "offset", "crop-min", "crop-max"};
+  static const std::vector<std::string> names = {"scene", "up-axis", "scale", "fit-size", "offset", "crop-min", "crop-max"};
   return names;
 }
 
 Status sceneConfigFromArgs(const CliArgs& args, SceneConfig* config) {
   config->scene = args.get("scene", config->scene);
+  config->transform.up_axis = args.get("up-axis", config->transform.up_axis);
   if (Status s = args.getDouble("scale", &config->transform.scale); !s) return s;
   std::vector<double> v;
+  if (Status s = args.getDoubles("fit-size", 3, &v); !s) return s;
+  if (!v.empty()) config->transform.fit_size = Eigen::Vector3d(v[0], v[1], v[2]);
+  v.clear();
   if (Status s = args.getDoubles("offset", 3, &v); !s) return s;
   if (!v.empty()) config->transform.offset = Eigen::Vector3d(v[0], v[1], v[2]);
   v.clear();

@@ -26,7 +26,8 @@ namespace {
 
 constexpr char kUsage[] =
     "usage: nbv_evaluate --reconstruction MESH --ground-truth MESH|SCENE --voxel-size M\n"
-    "                    [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]  (ground truth)\n"
+    "                    [--up-axis z|y] [--scale S] [--fit-size X,Y,Z] [--offset X,Y,Z]  (ground truth)\n"
+    "                    [--crop-min X,Y,Z] [--crop-max X,Y,Z]  (ground truth)\n"
     "                    [--bounds X0,Y0,Z0,X1,Y1,Z1] [--spacing M] [--min-range M] [--max-range M]\n"
     "                    [--collision-radius M] [--no-pruning] [--seed N] [--threads N (2)] [--out DIR] [--plots]\n"
     "Samples every --spacing (default voxel size / 3); coverage within e_max = voxel size * sqrt(3) / 2.\n";

@@ -56,8 +56,8 @@ int main(int argc, char** argv) {
   CliArgs args(options, {"help"});
   if (Status s = args.parse(argc, argv); !s) return fail(s.message());
   if (args.has("help")) {
-    std::cout << "usage: nbv_flight [--scene NAME|FILE] [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z]\n"
-                 "                  [--crop-max X,Y,Z] [--standoff M] [--levels N] [--step M] [--voxel M]\n"
+    std::cout << "usage: nbv_flight [--scene NAME|FILE] [--up-axis z|y] [--scale S] [--fit-size X,Y,Z]\n"
+                 "                  [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--standoff M] [--levels N] [--step M] [--voxel M]\n"
                  "                  [--threads N]\n"
                  "                  [--noise-k K] [--seed N] [--out DIR] [--pictures N]\n";
     return 0;

@@ -42,8 +42,9 @@ namespace {
 
 const char* kUsage =
     "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
-    "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--scale S] [--offset X,Y,Z]\n"
-    "                   [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--coverage-every S] [--oracle-gain N]\n"
+    "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--up-axis z|y]\n"
+    "                   [--scale S] [--fit-size X,Y,Z] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
+    "                   [--coverage-every S] [--oracle-gain N]\n"
     "                   [--oracle-lambda L] [--no-plots]\n"
     "  --config defaults to config/<scene name>.yaml of the package when it exists.\n"
     "  --coverage-every S evaluates the reconstruction every S seconds of flight (coverage over time).\n"
@@ -186,9 +187,18 @@ int main(int argc, char** argv) {
   if (Status s = loadScene(config.scene, &mesh); !s) return fail(s.message());
   std::unique_ptr<RaycastScene> scene;
   if (Status s = RaycastScene::create(mesh, &scene); !s) return fail(s.message());
-  std::printf("scene '%s': %zu triangles, %.0f m^2; config %s; voxel %.2f m; %d trial(s) from seed %d\n",
-              config.scene.scene.c_str(), mesh.numTriangles(), mesh.area(),
+  const AlignedBox extent = mesh.bounds();
+  std::printf("scene '%s': %zu triangles, %.0f m^2, [%.1f %.1f %.1f] - [%.1f %.1f %.1f] m; config %s; voxel %.2f m; "
+              "%d trial(s) from seed %d\n",
+              config.scene.scene.c_str(), mesh.numTriangles(), mesh.area(), extent.min.x(), extent.min.y(),
+              extent.min.z(), extent.max.x(), extent.max.y(), extent.max.z(),
               config_file.empty() ? "(defaults)" : config_file.c_str(), config.tsdf.voxel_size, trials, seed);
+  const double slack = 0.5 * config.tsdf.voxel_size;  // a ground at z = -1e-6 is inside
+  if ((extent.min.array() < config.tsdf.bounds.min.array() - slack).any() ||
+      (extent.max.array() > config.tsdf.bounds.max.array() + slack).any()) {
+    std::fprintf(stderr, "nbv_mission: warning: the scene reaches outside the map's bounds (nbv/bounds_min/max): "
+                         "what lies outside is never mapped\n");
+  }
   // What the wall times depend on besides the host: they differ with these.
   const int packet_rays = scene->nativePacketWidth();
   const char* voxel_loop = bestKernelIsa() == KernelIsa::kAvx2 ? "avx2" : "scalar";

@@ -36,8 +36,8 @@ namespace {
 const char* kUsage =
     "usage: nbv_oracle --scene plant|statue|FILE [--config YAML] [--seed S] [--out DIR] [--threads N]\n"
     "                  [--target-spacing M] [--candidate-spacing M] [--max-candidates N] [--path-iterations N]\n"
-    "                  [--cover-fraction F] [--online-path M] [--online-min MIN] [--scale S] [--offset X,Y,Z]\n"
-    "                  [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
+    "                  [--cover-fraction F] [--online-path M] [--online-min MIN] [--up-axis z|y] [--scale S]\n"
+    "                  [--fit-size X,Y,Z] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
     "  --config defaults to config/<scene name>.yaml of the package when it exists.\n";
 
 int fail(const std::string& message) {

@@ -22,8 +22,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (args.has("help")) {
-    std::cout << "usage: nbv_scene [--scene NAME|FILE] [--scale S] [--offset X,Y,Z] [--crop-min X,Y,Z]\n"
-                 "                 [--crop-max X,Y,Z] [--out FILE.ply|FILE.stl] | --list\n";
+    std::cout << "usage: nbv_scene [--scene NAME|FILE] [--up-axis z|y] [--scale S] [--fit-size X,Y,Z] [--offset X,Y,Z]\n"
+                 "                 [--crop-min X,Y,Z] [--crop-max X,Y,Z] [--out FILE.ply|FILE.stl] | --list\n";
     return 0;
   }
   if (args.has("list")) {

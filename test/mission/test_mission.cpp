@@ -171,6 +171,23 @@ TEST(MissionConfig, ReadsTheCameraMountsPitch) {
   EXPECT_NE(c.validate().message().find("camera/pitch_deg"), std::string::npos) << c.validate().message();
 }
 
+TEST(MissionConfig, ReadsTheScenesUpAxisAndFit) {
+  MissionConfig c;
+  ASSERT_TRUE(loadMissionConfig(writeTemp("fit.yaml", "depth_sim:\n  scene: statue\n  scene_up_axis: y\n"
+                                                      "  scene_fit_size: [20, 20, 60]\n"),
+                                &c)
+                  .ok());
+  EXPECT_EQ(c.scene.transform.up_axis, "y");
+  EXPECT_EQ(c.scene.transform.fit_size, Eigen::Vector3d(20, 20, 60));
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  c = MissionConfig();
+  ASSERT_TRUE(loadMissionConfig(writeTemp("fit_scaled.yaml", "depth_sim:\n  scene_scale: 0.5\n"
+                                                             "  scene_fit_size: [20, 20, 60]\n"),
+                                &c)
+                  .ok());
+  EXPECT_NE(c.validate().message().find("scale"), std::string::npos) << c.validate().message();
+}
+
 TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   MissionConfig c;
   Status s = loadMissionConfig(writeTemp("typo.yaml", "mission:\n  sped: 0.5\n"), &c);

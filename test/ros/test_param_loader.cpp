@@ -54,6 +54,7 @@ TEST(ParamLoader, ReadsSharedCameraAndPrivateScene) {
   ros::param::set(ns.priv + "/scene_scale", 0.5);
   std::vector<double> crop_max = {1e9, 1e9, 15.0};
   ros::param::set(ns.priv + "/crop_max", crop_max);
+  ros::param::set(ns.priv + "/scene_up_axis", std::string("y"));
   CameraConfig camera;
   DepthSimConfig config;
   const Status s = load(ns, &camera, &config);
@@ -63,6 +64,18 @@ TEST(ParamLoader, ReadsSharedCameraAndPrivateScene) {
   EXPECT_EQ(config.scene.scene, "statue");
   EXPECT_DOUBLE_EQ(config.scene.transform.scale, 0.5);
   EXPECT_DOUBLE_EQ(config.scene.transform.crop.max.z(), 15.0);
+  EXPECT_EQ(config.scene.transform.up_axis, "y");
+}
+
+TEST(ParamLoader, ReadsTheScenesFit) {
+  Namespaces ns;
+  std::vector<double> fit = {20.0, 20.0, 60.0};
+  ros::param::set(ns.priv + "/scene_fit_size", fit);
+  CameraConfig camera;
+  DepthSimConfig config;
+  const Status s = load(ns, &camera, &config);
+  ASSERT_TRUE(s.ok()) << s.message();
+  EXPECT_EQ(config.scene.transform.fit_size, Eigen::Vector3d(20, 20, 60));
 }
 
 TEST(ParamLoader, BadValuesNameTheKey) {
@@ -80,6 +93,8 @@ TEST(ParamLoader, BadValuesNameTheKey) {
       {"priv:tf_timeout", XmlRpc::XmlRpcValue(true), "tf_timeout"},
       {"priv:camera_frame", XmlRpc::XmlRpcValue(std::string("world")), "camera_frame"},
       {"priv:scene_offset", XmlRpc::XmlRpcValue(1.0), "scene_offset"},
+      {"priv:scene_up_axis", XmlRpc::XmlRpcValue(std::string("x")), "up_axis"},
+      {"priv:scene_fit_size", XmlRpc::XmlRpcValue(20.0), "scene_fit_size"},
   };
   for (const Case& c : cases) {
     Namespaces ns;

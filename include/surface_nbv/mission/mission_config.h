@@ -4,7 +4,8 @@
 //   nbv:        shared map, camera and Table 1 parameters (voxel_size, w_th,
 //               bounds_min/max, camera{...}, delta_pose, d_nu, d_nu_max,
 //               lambda_tc, lambda_ic)
-//   depth_sim:  the scene (scene, scene_scale, scene_offset, crop_min/max),
+//   depth_sim:  the scene (scene, scene_up_axis, scene_scale, scene_fit_size,
+//               scene_offset, crop_min/max),
 //               its other, node-only keys are not read here
 //   mission:    the mission itself (start pose, speed, frame rate, frontier
 //               period, budgets, seeds); every key optional, unknown keys refused.

@@ -31,7 +31,8 @@ struct DepthSimConfig {
 
 // Reads `camera/...` keys relative to the reader's namespace.
 void readCameraConfig(ParamReader* reader, CameraConfig* config);
-// Reads `scene`, `scene_scale`, `scene_offset`, `crop_min`, `crop_max`.
+// Reads `scene`, `scene_up_axis`, `scene_scale`, `scene_fit_size`,
+// `scene_offset`, `crop_min`, `crop_max`.
 void readSceneConfig(ParamReader* reader, SceneConfig* config);
 
 // Loads and validates everything depth_sim needs: the node's private keys

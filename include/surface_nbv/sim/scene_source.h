@@ -22,8 +22,9 @@ struct SceneConfig {
 
 Status loadScene(const SceneConfig& config, TriangleMesh* mesh);
 
-// Command-line form shared by the tools: --scene NAME|FILE, --scale S,
-// --offset X,Y,Z, --crop-min X,Y,Z, --crop-max X,Y,Z.
+// Command-line form shared by the tools: --scene NAME|FILE, --up-axis z|y,
+// --scale S, --fit-size X,Y,Z, --offset X,Y,Z, --crop-min X,Y,Z,
+// --crop-max X,Y,Z.
 const std::vector<std::string>& sceneOptionNames();
 Status sceneConfigFromArgs(const CliArgs& args, SceneConfig* config);
 
