@@ -81,11 +81,10 @@ Status MissionConfig::validate() const {
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
   if (!positive(speed) || speed > 5.0) return Status::Error("mission/speed expected in (0, 5] m/s");
   if (!positive(yaw_rate) || yaw_rate > 5.0) return Status::Error("mission/yaw_rate expected in (0, 5] rad/s");
-  // The legs are timed at speed and yaw_rate: a reference the tracker
-  // cannot follow would leave the UAV behind it on every turn.
-  if (speed > tracker.mpc.v_max) return Status::Error("mission/speed expected <= tracker/v_max (the UAV's limit per axis)");
-  if (yaw_rate > tracker.mpc.yaw_rate_max) {
-    return Status::Error("mission/yaw_rate expected <= tracker/yaw_rate_max (the UAV's limit)");
+  if (Status s = checkReferenceWithinLimits(speed, yaw_rate, tracker.mpc.v_max, tracker.mpc.yaw_rate_max, "mission/",
+                                            "tracker/");
+      !s) {
+    return s;
   }
   if (!positive(frame_rate) || frame_rate > 100.0) return Status::Error("mission/frame_rate expected in (0, 100] Hz");
   if (!positive(frontier_period)) return Status::Error("mission/frontier_period expected > 0");

@@ -1,9 +1,11 @@
 #include "surface_nbv/ros/planner_params.h"
 
 #include <cmath>
+#include <limits>
 
 #include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/sim_params.h"
+#include "surface_nbv/tracking/uav_model.h"
 
 namespace surface_nbv {
 
@@ -162,14 +164,13 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   // With the simulated UAV's limits on the server (the config's tracker
   // section), legs timed faster than it can fly are refused, as nbv_mission
   // refuses them; a stack without that section is not checked.
-  double limit = 0.0;
-  if (ros::param::get(tracker_namespace + "/v_max", limit) && c->speed > limit) {
-    return Status::Error(priv.getNamespace() + "/speed expected <= " + tracker_namespace + "/v_max");
+  double v_max = 0.0, yaw_rate_max = 0.0;
+  if (!ros::param::get(tracker_namespace + "/v_max", v_max)) v_max = std::numeric_limits<double>::infinity();
+  if (!ros::param::get(tracker_namespace + "/yaw_rate_max", yaw_rate_max)) {
+    yaw_rate_max = std::numeric_limits<double>::infinity();
   }
-  if (ros::param::get(tracker_namespace + "/yaw_rate_max", limit) && c->yaw_rate > limit) {
-    return Status::Error(priv.getNamespace() + "/yaw_rate expected <= " + tracker_namespace + "/yaw_rate_max");
-  }
-  return Status::Ok();
+  return checkReferenceWithinLimits(c->speed, c->yaw_rate, v_max, yaw_rate_max, priv.getNamespace() + "/",
+                                    tracker_namespace + "/");
 }
 
 }  // namespace surface_nbv

@@ -23,6 +23,17 @@ Status UavModelConfig::validate() const {
   return Status::Ok();
 }
 
+Status checkReferenceWithinLimits(double speed, double yaw_rate, double v_max, double yaw_rate_max,
+                                  const std::string& reference, const std::string& limits) {
+  if (speed > v_max) {
+    return Status::Error(reference + "speed expected <= " + limits + "v_max (the UAV's limit per axis)");
+  }
+  if (yaw_rate > yaw_rate_max) {
+    return Status::Error(reference + "yaw_rate expected <= " + limits + "yaw_rate_max (the UAV's limit)");
+  }
+  return Status::Ok();
+}
+
 AxisDiscretization discretizeAxis(double drag, double dt) {
   AxisDiscretization d;
   const double x = drag * dt;

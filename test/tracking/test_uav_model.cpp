@@ -24,6 +24,19 @@ TEST(UavModel, ConfigNamesBadKey) {
   EXPECT_NE(c.validate().message().find("yaw_rate_max"), std::string::npos);
 }
 
+// The legs' reference within the UAV's limits: at the limit passes, above it
+// is refused naming both keys, an unknown (infinite) limit passes.
+TEST(UavModel, ReferenceWithinLimitsNamesTheKeyOverItsLimit) {
+  EXPECT_TRUE(checkReferenceWithinLimits(1.0, 1.0, 1.0, 1.0, "mission/", "tracker/").ok());
+  Status s = checkReferenceWithinLimits(1.2, 0.5, 1.0, 1.0, "mission/", "tracker/");
+  EXPECT_NE(s.message().find("mission/speed expected <= tracker/v_max"), std::string::npos) << s.message();
+  s = checkReferenceWithinLimits(0.5, 1.5, 1.0, 1.0, "/planner/", "/tracker/");
+  EXPECT_NE(s.message().find("/planner/yaw_rate expected <= /tracker/yaw_rate_max"), std::string::npos)
+      << s.message();
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(checkReferenceWithinLimits(20.0, 10.0, inf, inf, "a/", "b/").ok());
+}
+
 // The exact discretization matches many tiny Euler steps, with and without drag.
 TEST(UavModel, DiscretizationMatchesFineIntegration) {
   for (double drag : {0.0, 0.3}) {

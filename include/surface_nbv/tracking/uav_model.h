@@ -4,6 +4,8 @@
 // Acceleration is the net command beyond hover (gravity is the autopilot's job).
 #pragma once
 
+#include <string>
+
 #include "surface_nbv/common.h"
 #include "surface_nbv/util/angles.h"
 #include "surface_nbv/util/status.h"
@@ -40,6 +42,13 @@ struct AxisDiscretization {
   double alpha = 1.0, beta = 0.0, gamma = 0.0;
 };
 AxisDiscretization discretizeAxis(double drag, double dt);
+
+// Legs are timed at a reference speed and yaw rate; a reference faster than
+// the UAV's limits leaves it behind on every turn. Names the reference key and
+// the limit it exceeds: `reference` and `limits` are key prefixes (e.g.
+// "mission/" and "tracker/"). An infinite limit (one not known) passes.
+Status checkReferenceWithinLimits(double speed, double yaw_rate, double v_max, double yaw_rate_max,
+                                  const std::string& reference, const std::string& limits);
 
 // The acceleration closest to `a` (NaN reads as 0) inside [-a_max, a_max] that
 // keeps v+ inside [-v_max, v_max] after dt; when no such value exists (v already
