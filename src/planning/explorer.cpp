@@ -325,13 +325,21 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
     if (nearestFree(uav.head<3>(), 2.0, &from)) prefix.push_back(uav);
   }
   // pool_unknown_below: a next target that now faces little unknown space
-  // leaves the tour while others remain.
-  while (config_.pool_unknown_below > 0.0 && !have_target_ && tour_.size() > 1 &&
-         unknownNear(tour_.front().head<3>()) < config_.pool_unknown_below) {
+  // leaves the tour while a viewpoint that faces more remains. When none does
+  // (the mission's end game: only leftovers) the tour is flown in its own
+  // order: pooling would leave only its last viewpoint, the far end of the
+  // open path, each time, and the ranking would chase the last slivers of
+  // unknown space from one end of the scene to the other.
+  const auto facing = [this](const Eigen::Vector4d& q) {
+    return unknownNear(q.head<3>()) >= config_.pool_unknown_below;
+  };
+  const bool end_game = config_.pool_unknown_below > 0.0 && std::none_of(tour_.begin(), tour_.end(), facing);
+  while (config_.pool_unknown_below > 0.0 && !end_game && !have_target_ && tour_.size() > 1 &&
+         !facing(tour_.front())) {
     tour_.erase(tour_.begin());
     ++stats_.pooled;
   }
-  if (config_.head_lookahead > 1 && !have_target_) promoteBestHead(uav);
+  if (config_.head_lookahead > 1 && !have_target_ && !end_game) promoteBestHead(uav);
   const bool capped = config_.leg_time_budget > 0.0;
   auto left = [this, capped] {
     return capped ? std::chrono::duration<double>(leg_deadline_ - Clock::now()).count()

@@ -471,13 +471,29 @@ TEST(Explorer, ViewpointsFacingLittleUnknownWaitUntilTheTourRunsOut) {
   d = explorer.update(g, kUav, false);
   EXPECT_EQ(d.action, ExplorerAction::kContinue);
   EXPECT_EQ(explorer.tour().size(), 1u);
-  // Once the far one is covered the tour runs out: the leftovers are next.
+  // Once the far one is covered the tour runs out: the leftovers are next,
+  // in the tour's order (the nearer first), none pooled again, none promoted
+  // for the larger sliver of unknown space the farther one faces.
   Frontier h = makeFrontier({{{-3, -2, 2.5}, {-2, -3.5, 2.5}}});
-  h.viewpoints[0].unknown_fraction = h.viewpoints[1].unknown_fraction = 0.01;
-  d = explorer.update(h, kUav, false);
-  ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-  EXPECT_LT(d.target.y(), 0.0);
-  EXPECT_EQ(explorer.stats().full_recomputes, 2u);
+  h.viewpoints[0].unknown_fraction = 0.001;
+  h.viewpoints[1].unknown_fraction = 0.04;
+  for (const bool ranked : {false, true}) {
+    ExplorerConfig end_config = config;
+    end_config.head_lookahead = ranked ? 1000 : 0;
+    end_config.head_unknown = ranked;
+    Explorer end(end_config, pathConfig());
+    ASSERT_TRUE(end.setMap(&world.collision(), world.bounds()).ok());
+    ASSERT_EQ(end.update(f, kUav, false).action, ExplorerAction::kFly);
+    ASSERT_EQ(end.update(g, kUav, false).action, ExplorerAction::kContinue);
+    const size_t pooled = end.stats().pooled;
+    d = end.update(h, kUav, false);
+    ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+    EXPECT_NEAR((d.target.head<3>() - Eigen::Vector3d(-3, -2, 2.5)).norm(), 0.0, 1e-9) << ranked;
+    EXPECT_EQ(end.tour().size(), 2u);
+    EXPECT_EQ(end.stats().pooled, pooled);
+    EXPECT_EQ(end.stats().promoted, 0u);
+    EXPECT_EQ(end.stats().full_recomputes, 2u);
+  }
 }
 
 // head_lookahead: of the first tour viewpoints, the one with the best

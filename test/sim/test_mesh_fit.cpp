@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -64,6 +65,32 @@ std::string objBox(const Vector3d& lo, const Vector3d& hi) {
   return text;
 }
 
+// Writes a file `name` in a fresh temporary folder with `write`, loads it as
+// a Y-up model fitted to the paper's statue box (20 x 20 x 60 m), and
+// removes the folder.
+Status loadYUpIntoStatueBox(const std::string& name, TriangleMesh* mesh,
+                            const std::function<bool(const std::string&)>& write) {
+  std::string pattern = (fs::temp_directory_path() / "nbv_mesh_fit_XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) return Status::Error("no temporary folder");
+  const std::string file = (fs::path(pattern) / name).string();
+  MeshLoadOptions options;
+  options.up_axis = "y";
+  options.fit_size = Vector3d(20, 20, 60);
+  const Status s = write(file) ? loadMesh(file, options, mesh) : Status::Error("cannot write " + file);
+  fs::remove_all(pattern);
+  return s;
+}
+
+// The scene options of a tool's command line `words` (after the program name).
+Status sceneFromWords(std::vector<std::string> words, SceneConfig* config) {
+  words.insert(words.begin(), "tool");
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  CliArgs args(sceneOptionNames(), {});
+  if (Status s = args.parse(static_cast<int>(argv.size()), argv.data()); !s) return s;
+  return sceneConfigFromArgs(args, config);
+}
+
 TEST(MeshFit, AYUpModelIsStoodUpright) {
   // Six metres tall along y, as a Y-up export holds it.
   TriangleMesh mesh = boxMesh(Vector3d(0, 0, 0), Vector3d(2, 6, 1));
@@ -110,20 +137,12 @@ TEST(MeshFit, AFlatModelFitsByItsOtherAxes) {
 }
 
 TEST(MeshFit, AYUpObjFileFitsThePapersStatueBox) {
-  std::string pattern = (fs::temp_directory_path() / "nbv_mesh_fit_XXXXXX").string();
-  ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-  const fs::path dir = pattern;
-  const std::string file = (dir / "statue.obj").string();
-  {
+  TriangleMesh mesh;
+  const Status s = loadYUpIntoStatueBox("statue.obj", &mesh, [](const std::string& file) {
     std::ofstream out(file);
     out << objBox(Vector3d(-0.25, 0, -0.2), Vector3d(0.25, 3, 0.2));  // 0.5 wide, 3 tall (y), 0.4 deep
-  }
-  MeshLoadOptions options;
-  options.up_axis = "y";
-  options.fit_size = Vector3d(20, 20, 60);
-  TriangleMesh mesh;
-  const Status s = loadMesh(file, options, &mesh);
-  fs::remove_all(dir);
+    return static_cast<bool>(out);
+  });
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_EQ(mesh.numTriangles(), 12u);
   // Upright: 3 m tall scaled by 60 / 3 = 20; 0.5 x 0.4 m footprint to 10 x 8 m.
@@ -131,23 +150,16 @@ TEST(MeshFit, AYUpObjFileFitsThePapersStatueBox) {
 }
 
 // The built-in statue exported Y-up in centimetres, as a downloaded model
-// might be, comes back vertex for vertex as built (it is 20 x 20 x 60 m,
-// centred, on the ground).
+// might be, comes back as built (it is 20 x 20 x 60 m, centred, on the
+// ground).
 TEST(MeshFit, TheStatueSavedYUpInCentimetresComesBackAsBuilt) {
   TriangleMesh statue;
   ASSERT_TRUE(makeProceduralScene("statue", &statue).ok());
   TriangleMesh exported = statue;
   for (Eigen::Vector3f& v : exported.vertices) v = 100.0f * Eigen::Vector3f(v.x(), v.z(), -v.y());
-  std::string pattern = (fs::temp_directory_path() / "nbv_mesh_fit_XXXXXX").string();
-  ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-  const std::string file = (fs::path(pattern) / "liberty.ply").string();
-  ASSERT_TRUE(saveMesh(exported, file).ok());
-  MeshLoadOptions options;
-  options.up_axis = "y";
-  options.fit_size = Vector3d(20, 20, 60);
   TriangleMesh loaded;
-  const Status s = loadMesh(file, options, &loaded);
-  fs::remove_all(pattern);
+  const Status s = loadYUpIntoStatueBox("liberty.ply", &loaded,
+                                        [&exported](const std::string& file) { return saveMesh(exported, file).ok(); });
   ASSERT_TRUE(s.ok()) << s.message();
   ASSERT_EQ(loaded.numTriangles(), statue.numTriangles());
   expectBox(loaded.bounds(), statue.bounds().min, statue.bounds().max);
@@ -185,31 +197,15 @@ TEST(MeshFit, BadUpAxisOrFitIsRefusedByName) {
 }
 
 TEST(MeshFit, TheToolsOptionsCarryUpAxisAndFit) {
-  std::vector<std::string> argv_text = {"tool", "--scene", "model.obj", "--up-axis", "y", "--fit-size", "20,20,60"};
-  std::vector<char*> argv;
-  for (std::string& a : argv_text) argv.push_back(a.data());
-  CliArgs args(sceneOptionNames(), {});
-  ASSERT_TRUE(args.parse(static_cast<int>(argv.size()), argv.data()).ok());
   SceneConfig config;
-  ASSERT_TRUE(sceneConfigFromArgs(args, &config).ok());
+  ASSERT_TRUE(sceneFromWords({"--scene", "model.obj", "--up-axis", "y", "--fit-size", "20,20,60"}, &config).ok());
   EXPECT_EQ(config.transform.up_axis, "y");
   EXPECT_EQ(config.transform.fit_size, Vector3d(20, 20, 60));
-
   // Two sizes, or a fit with a scale, are refused.
-  argv_text = {"tool", "--fit-size", "20,60"};
-  argv.clear();
-  for (std::string& a : argv_text) argv.push_back(a.data());
-  CliArgs two(sceneOptionNames(), {});
-  ASSERT_TRUE(two.parse(static_cast<int>(argv.size()), argv.data()).ok());
-  SceneConfig bad;
-  EXPECT_FALSE(sceneConfigFromArgs(two, &bad).ok());
-  argv_text = {"tool", "--fit-size", "20,20,60", "--scale", "2"};
-  argv.clear();
-  for (std::string& a : argv_text) argv.push_back(a.data());
-  CliArgs scaled(sceneOptionNames(), {});
-  ASSERT_TRUE(scaled.parse(static_cast<int>(argv.size()), argv.data()).ok());
-  SceneConfig bad2;
-  const Status s = sceneConfigFromArgs(scaled, &bad2);
+  SceneConfig two;
+  EXPECT_FALSE(sceneFromWords({"--fit-size", "20,60"}, &two).ok());
+  SceneConfig scaled;
+  const Status s = sceneFromWords({"--fit-size", "20,20,60", "--scale", "2"}, &scaled);
   EXPECT_FALSE(s.ok());
   EXPECT_NE(s.message().find("scale"), std::string::npos) << s.message();
 }

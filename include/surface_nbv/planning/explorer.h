@@ -89,7 +89,8 @@ struct ExplorerConfig {
   // While other viewpoints are in the tour, a viewpoint that faces less than
   // this share of unknown space (Viewpoint::unknown_fraction) does not join
   // it, and one that becomes the next target leaves it: leftovers wait until
-  // the tour runs out (0: off).
+  // the tour runs out (0: off). A tour of leftovers only (the end game) is
+  // flown in its own order, with no head_lookahead comparison.
   double pool_unknown_below = 0.0;
   // Cluster-graph distances (q_l closest by path length): true uses the path
   // planner's oracle (straight line when free, else the roadmap's path
