@@ -1,6 +1,8 @@
 #include "surface_nbv/sim/procedural_scenes.h"
 
 #include <algorithm>
+#include <array>
+#include <utility>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -236,6 +238,108 @@ void buildStatue(MeshBuilder& b) {
   addFigure(b);
 }
 
+
+// ---- multistorey: x in [-30, 30], y in [-20, 20], z in [0, 45.6] ----
+//
+// An open-sided parking structure in three terraced tiers: decks every
+// kDeckPitch (0.3 m slabs, 3 m clear between them), the lower five 60 x 40 m,
+// the next four 44 x 30 m, the top four 28 x 20 m. Each deck is joined to the
+// one below by a 5 m wide ramp through a hole in it, stands on 0.5 m columns,
+// and has 0.9 m parapets broken by 3 m gaps a UAV can enter by. Two closed
+// 4 x 6 m stair cores rise through every deck to 45.6 m.
+
+constexpr double kDeckPitch = 3.3;
+constexpr double kSlab = 0.3;
+constexpr int kDecks = 13;
+
+struct Rect {
+  double x0, x1, y0, y1;
+  bool overlaps(const Rect& o, double margin) const {
+    return x0 - margin < o.x1 && o.x0 < x1 + margin && y0 - margin < o.y1 && o.y0 < y1 + margin;
+  }
+};
+
+Rect deckFootprint(int level) {
+  if (level <= 5) return {-30, 30, -20, 20};
+  if (level <= 9) return {-22, 22, -15, 15};
+  return {-14, 14, -10, 10};
+}
+
+// The ramp up to `level` from the one below (and the hole it rises through):
+// 16 m along x near the footprint's +y edge, climbing +x on odd levels.
+Rect rampHole(int level) {
+  const Rect f = deckFootprint(level);
+  return {-8, 8, f.y1 - 7.5, f.y1 - 2.0};
+}
+
+const std::array<Rect, 2>& stairCores() {
+  static const std::array<Rect, 2> cores = {Rect{-12, -8, -9, -3}, Rect{8, 12, -9, -3}};
+  return cores;
+}
+
+// The rectangle `r` less `hole` (inside it), as up to four boxes.
+void slabWithHole(MeshBuilder& b, const Rect& r, const Rect& hole, double z0, double z1) {
+  auto box = [&](double x0, double x1, double y0, double y1) {
+    if (x1 - x0 > 1e-6 && y1 - y0 > 1e-6) slab(b, x0, x1, y0, y1, z0, z1);
+  };
+  box(r.x0, r.x1, r.y0, hole.y0);
+  box(r.x0, r.x1, hole.y1, r.y1);
+  box(r.x0, hole.x0, hole.y0, hole.y1);
+  box(hole.x1, r.x1, hole.y0, hole.y1);
+}
+
+// Parapet segments along one edge from a to b (one axis varies), 0.9 m high,
+// with a 3 m gap in the middle of every 10 m bay.
+void addParapetEdge(MeshBuilder& b, const Vector2d& a, const Vector2d& c, const Vector2d& inward, double z) {
+  const double length = (c - a).norm();
+  const Vector2d d = (c - a) / length;
+  const int bays = std::max(1, static_cast<int>(std::round(length / 10.0)));
+  const double bay = length / bays;
+  for (int i = 0; i < bays; ++i) {
+    for (const auto& [s0, s1] : {std::pair<double, double>{0.0, 0.5 * (bay - 3.0)},
+                                 std::pair<double, double>{0.5 * (bay + 3.0), bay}}) {
+      const Vector2d p0 = a + (i * bay + s0) * d, p1 = a + (i * bay + s1) * d;
+      const Vector2d q0 = p0 + 0.2 * inward, q1 = p1 + 0.2 * inward;
+      slab(b, std::min({p0.x(), p1.x(), q0.x(), q1.x()}), std::max({p0.x(), p1.x(), q0.x(), q1.x()}),
+           std::min({p0.y(), p1.y(), q0.y(), q1.y()}), std::max({p0.y(), p1.y(), q0.y(), q1.y()}), z, z + 0.9);
+    }
+  }
+}
+
+void addParapets(MeshBuilder& b, const Rect& f, double z) {
+  addParapetEdge(b, {f.x0, f.y0}, {f.x1, f.y0}, {0, 1}, z);
+  addParapetEdge(b, {f.x0, f.y1}, {f.x1, f.y1}, {0, -1}, z);
+  addParapetEdge(b, {f.x0, f.y0 + 0.2}, {f.x0, f.y1 - 0.2}, {1, 0}, z);
+  addParapetEdge(b, {f.x1, f.y0 + 0.2}, {f.x1, f.y1 - 0.2}, {-1, 0}, z);
+}
+
+void buildMultistorey(MeshBuilder& b) {
+  const double top = kDecks * kDeckPitch;
+  for (int level = 1; level <= kDecks; ++level) {
+    const Rect f = deckFootprint(level);
+    const Rect hole = rampHole(level);
+    const double z = level * kDeckPitch;
+    slabWithHole(b, f, hole, z - kSlab, z);
+    addParapets(b, f, z);
+    // The ramp from the deck below, 0.3 m thick, its top flush with both decks.
+    const double zl = z - kDeckPitch, yc = 0.5 * (hole.y0 + hole.y1);
+    const double xs = level % 2 == 1 ? hole.x0 : hole.x1, xe = level % 2 == 1 ? hole.x1 : hole.x0;
+    b.addBeam(Vector3d(xs, yc, std::max(zl - 0.5 * kSlab, 0.5 * kSlab)), Vector3d(xe, yc, z - 0.5 * kSlab), hole.y1 - hole.y0 - 0.4, kSlab);
+    // Columns under the deck on a 9 x 8.5 m grid, clear of holes and cores.
+    const Rect below_hole = level > 1 ? rampHole(level - 1) : Rect{0, 0, 0, 0};
+    for (double x = -27; x <= 27.01; x += 9.0) {
+      for (double y = -17; y <= 17.01; y += 8.5) {
+        const Rect c{x - 0.25, x + 0.25, y - 0.25, y + 0.25};
+        if (c.x0 < f.x0 + 0.5 || c.x1 > f.x1 - 0.5 || c.y0 < f.y0 + 0.5 || c.y1 > f.y1 - 0.5) continue;
+        if (c.overlaps(hole, 0.3) || (level > 1 && c.overlaps(below_hole, 0.3))) continue;
+        if (c.overlaps(stairCores()[0], 0.3) || c.overlaps(stairCores()[1], 0.3)) continue;
+        slab(b, c.x0, c.x1, c.y0, c.y1, zl, z - kSlab);
+      }
+    }
+  }
+  for (const Rect& c : stairCores()) slab(b, c.x0, c.x1, c.y0, c.y1, 0, top + 2.7);
+}
+
 struct SceneEntry {
   const char* name;
   void (*build)(MeshBuilder&);
@@ -246,7 +350,8 @@ const std::vector<SceneEntry>& sceneTable() {
                                                 {"sphere", buildSphere},
                                                 {"room", buildRoom},
                                                 {"plant", buildPlant},
-                                                {"statue", buildStatue}};
+                                                {"statue", buildStatue},
+                                                {"multistorey", buildMultistorey}};
   return table;
 }
 

@@ -66,7 +66,7 @@ void expectBounds(const AlignedBox& box, const Vector3d& lo, const Vector3d& hi,
 constexpr double kUavRadius = 1.0;
 
 TEST(ProceduralScenes, NamesAreStable) {
-  const std::vector<std::string> expected = {"box", "sphere", "room", "plant", "statue"};
+  const std::vector<std::string> expected = {"box", "sphere", "room", "plant", "statue", "multistorey"};
   EXPECT_EQ(proceduralSceneNames(), expected);
   for (const std::string& name : expected) EXPECT_TRUE(isProceduralScene(name));
   EXPECT_FALSE(isProceduralScene("Box"));
@@ -195,6 +195,26 @@ TEST(ProceduralScenes, StatueWithinItsBoxAndTall) {
   // The pedestal is stepped: the base is 20 m wide but the die above is narrower.
   EXPECT_GT(clearance(m, Vector3d(9.0, 0.0, 10.0)), kUavRadius);
   EXPECT_LT(clearance(m, Vector3d(9.0, 0.0, 1.0)), 1e-6 + 1.0);
+}
+
+TEST(ProceduralScenes, MultistoreyIsLargeWithFlyableDecks) {
+  const TriangleMesh m = build("multistorey");
+  expectBounds(m.bounds(), Vector3d(-30, -20, 0), Vector3d(30, 20, 45.6), 0.01);
+  EXPECT_GT(m.area(), 40000.0);
+  EXPECT_GT(signedVolume(m), 0.0);
+  // Between two decks (3.3 m apart, 0.3 m slabs) a point half-way up the
+  // 3 m gap clears the floor and the ceiling by 1.5 m, away from columns.
+  for (const Vector3d& p : {Vector3d(-22.5, 4.25, 1.5), Vector3d(4.5, -12.75, 3.3 * 3 + 1.5),
+                            Vector3d(-4.5, -4.25, 3.3 * 7 + 1.5), Vector3d(4.5, 0.0, 3.3 * 11 + 1.5)}) {
+    EXPECT_NEAR(clearance(m, p), 1.5, 1e-3) << p.transpose();
+  }
+  // A parapet gap (3 m wide, mid-bay) lets a UAV in from outside at deck 2.
+  EXPECT_GT(clearance(m, Vector3d(-25.0, -20.0, 3.3 * 2 + 1.5)), kUavRadius);
+  // Next to the gap the parapet is solid; the slab above stays 0.3 m thick.
+  EXPECT_LT(clearance(m, Vector3d(-28.0, -19.9, 3.3 * 2 + 0.5)), 0.15);
+  EXPECT_LT(clearance(m, Vector3d(-20.0, 0.0, 3.3 * 2 - 0.15)), 0.2);
+  // The stair cores rise above the top deck.
+  EXPECT_NEAR(clearance(m, Vector3d(-10.0, -6.0, 46.6)), 1.0, 1e-3);
 }
 
 }  // namespace
