@@ -197,7 +197,8 @@ MissionResult MissionRunner::run() {
     collision.update(*map_);
     explorer.mapChanged();
     oracle_stale = true;
-    result.times.collision += msSince(t_collision);
+    const double collision_ms = msSince(t_collision);
+    result.times.collision += collision_ms;
     const auto t_frontier = Clock::now();
     if (Status s = builder.update(*map_, collision, &frontier); !s) {
       result.status = Status::Error("frontier update failed: " + s.message());
@@ -222,6 +223,13 @@ MissionResult MissionRunner::run() {
     MissionEvent event;
     event.t = tracker.time();
     event.path_length = result.path_length;
+    event.uav = uav;
+    event.collision_ms = collision_ms;
+    event.frontier_ms = frontier_ms;
+    event.graph_ms = d.timings.graph_ms;
+    event.tour_ms = d.timings.tour_ms;
+    event.path_ms = d.timings.path_ms;
+    event.full_recompute = d.full_recompute;
     event.ises = frontier.ises.size();
     event.inside = frontier.insideCount();
     event.remaining = frontier.remaining;

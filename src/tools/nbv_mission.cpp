@@ -78,11 +78,12 @@ struct TrialRow {
 Status writeCsvs(const std::string& dir, const MissionResult& r) {
   if (Status s = writeFlightCsv(dir + "/path.csv", r.flown_t, r.flown); !s) return s;
   std::ofstream events(dir + "/events.csv");
-  events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason\n";
+  events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason,collision_ms,frontier_ms,graph_ms,tour_ms,path_ms,full\n";
   for (const MissionEvent& e : r.events) {
     events << e.t << "," << e.path_length << "," << e.ises << "," << e.inside << "," << e.remaining << ","
            << e.viewpoints << "," << e.clusters << "," << e.tour << "," << e.observed << "," << e.action << ","
-           << e.reason << "\n";
+           << e.reason << "," << e.collision_ms << "," << e.frontier_ms << "," << e.graph_ms << "," << e.tour_ms << ","
+           << e.path_ms << "," << (e.full_recompute ? 1 : 0) << "\n";
   }
   if (!events) return Status::Error("cannot write events.csv in " + dir);
   return Status::Ok();

@@ -34,6 +34,11 @@ struct MissionEvent {
   size_t ises = 0, inside = 0, remaining = 0, viewpoints = 0, clusters = 0, tour = 0;
   double observed = -1.0;      // fraction of probe points observed; -1 when not measured
   std::string action, reason;  // the Explorer's decision
+  Eigen::Vector4d uav = Eigen::Vector4d::Zero();  // the UAV's pose [x, y, z, yaw] at the update
+  // Wall-clock milliseconds of this update: collision map, frontier, and the
+  // Explorer's graph / tour / leg; full_recompute as ExplorerDecision's.
+  double collision_ms = 0.0, frontier_ms = 0.0, graph_ms = 0.0, tour_ms = 0.0, path_ms = 0.0;
+  bool full_recompute = false;
 };
 
 struct MissionStageTimes {  // wall-clock milliseconds, summed over the mission
