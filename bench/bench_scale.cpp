@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
   config.scene = benchSceneConfig("multistorey");
   config.seed = 1;
   config.max_flight_time = max_flight;
-  config.progress_period = 0.0;
+  config.progress_period = 1e-3;  // every frontier update
   TriangleMesh mesh;
   std::unique_ptr<RaycastScene> scene;
   if (Status s = loadScene(config.scene, &mesh); !s || !RaycastScene::create(mesh, &scene)) {
@@ -136,6 +136,10 @@ int main(int argc, char** argv) {
                    s.path.c_str());
     });
     const MissionResult r = runner.run();
+    if (!r.status) {
+      std::fprintf(stderr, "bench_scale: mission failed: %s\n", r.status.message().c_str());
+      return 1;
+    }
     mission_rss = peakRssMiB();
     std::fprintf(stderr, "bench_scale: mission stopped at %.0f s of flight, %.1f s wall (%s), peak RSS %.0f MiB\n",
                  r.flight_time, r.wall_time, r.end_reason.c_str(), mission_rss);
