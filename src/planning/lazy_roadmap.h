@@ -299,18 +299,40 @@ class Roadmap : public og::LazyPRMstar {
   // then its edges from the goal end (the first invalid one is removed), and
   // again until a path is valid. 1 = valid path in `route` (dense indices,
   // start first), 0 = start and goal are not connected, -1 = out of time.
+  //
+  // Invalid vertices are removed once, when the search ends: until then A*
+  // skips them (their flags say known-invalid in this epoch), which visits
+  // the same vertices in the same order as removing them at once would (a
+  // renumbering keeps the others' relative order), without renumbering the
+  // whole roadmap after every round (on a 60 x 40 x 45 m scene's roadmap of
+  // tens of thousands of vertices, that renumbering was the mission's
+  // largest single cost; docs/scaling.md).
   int search(Vertex s, Vertex g, const std::function<bool()>& timed_out, std::vector<uint32_t>* route) {
+    std::vector<Vertex> invalid;
+    const int found = searchKeepingInvalid(s, g, timed_out, route, &invalid);
+    if (invalid.empty()) return found;
+    // The removal renumbers the dense indices: a found route (of valid
+    // vertices only) is mapped back to vertices first, then to the new indices.
+    std::vector<Vertex> path;
+    if (found > 0)
+      for (uint32_t v : *route) path.push_back(byIndex_[v]);
+    removeVertices(invalid);
+    renumberIfDirty();
+    route->clear();
+    for (Vertex v : path) route->push_back(static_cast<uint32_t>(indexProperty_[v]));
+    return found;
+  }
+
+  int searchKeepingInvalid(Vertex s, Vertex g, const std::function<bool()>& timed_out, std::vector<uint32_t>* route,
+                           std::vector<Vertex>* invalid) {
+    renumberIfDirty();
     while (true) {
       if (timed_out()) return -1;
-      renumberIfDirty();
       if (!astar(static_cast<uint32_t>(indexProperty_[s]), static_cast<uint32_t>(indexProperty_[g]), route)) return 0;
-      std::vector<Vertex> invalid;
+      const size_t before = invalid->size();
       for (size_t k = route->size() - 1; k-- > 1;)
-        if (!vertexValid(byIndex_[(*route)[k]])) invalid.push_back(byIndex_[(*route)[k]]);
-      if (!invalid.empty()) {
-        removeVertices(invalid);
-        continue;
-      }
+        if (!vertexValid(byIndex_[(*route)[k]])) invalid->push_back(byIndex_[(*route)[k]]);
+      if (invalid->size() != before) continue;
       bool valid = true;
       for (size_t k = route->size() - 1; k >= 1 && valid; --k) {
         const Vertex a = byIndex_[(*route)[k - 1]], b = byIndex_[(*route)[k]];
