@@ -5,7 +5,7 @@
 // build/bench_scale/ (reused by later runs unless --fresh). On each saved map,
 // --repetitions times, one thread:
 //   frontier   the whole frontier rebuild by stage (ISEs from scratch, poses,
-//              merge, visibility, clusters) and the incremental rebuild after
+//              merge, visibility, clusters), then
 //              a second update with the map unchanged (the part of an update
 //              that does not depend on how much of the map changed)
 //   full       Explorer full recomputation: cluster graph, LK tour, first leg
