@@ -12,7 +12,9 @@ namespace {
 // Typed reads from one YAML map; the first failure is kept and named.
 class YamlSection {
  public:
-  YamlSection(const YAML::Node& node, std::string name) : node_(node), name_(std::move(name)) {}
+  // `given` (optional) collects "section/key" of every key present.
+  YamlSection(const YAML::Node& node, std::string name, std::set<std::string>* given = nullptr)
+      : node_(node), name_(std::move(name)), given_(given) {}
 
   bool present() const { return node_ && node_.IsMap(); }
   const Status& status() const { return status_; }
@@ -21,6 +23,7 @@ class YamlSection {
   void get(const std::string& key, T* value) {
     seen_.insert(key);
     if (!status_ || !present() || !node_[key]) return;
+    if (given_) given_->insert(name_ + "/" + key);
     try {
       *value = node_[key].as<T>();
     } catch (const YAML::Exception& e) {
@@ -43,7 +46,7 @@ class YamlSection {
   }
   YamlSection child(const std::string& key) {
     seen_.insert(key);
-    return YamlSection(present() ? node_[key] : YAML::Node(), name_ + "/" + key);
+    return YamlSection(present() ? node_[key] : YAML::Node(), name_ + "/" + key, given_);
   }
   // Every key of the section must have been asked for.
   void refuseUnknown() {
@@ -60,6 +63,7 @@ class YamlSection {
  private:
   YAML::Node node_;
   std::string name_;
+  std::set<std::string>* given_ = nullptr;
   std::set<std::string> seen_;
   Status status_;
 };
@@ -105,6 +109,7 @@ Status MissionConfig::validate() const {
     return Status::Error("mission/mesh_layer_queue expected in [1, 4096] frames");
   }
   if (threads < 1 || threads > 64) return Status::Error("mission/threads expected in [1, 64]");
+  if (Status s = pose_error.validate(); !s) return Status::Error("mission/" + s.message());
   return Status::Ok();
 }
 
@@ -117,7 +122,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   }
   if (!root.IsMap()) return Status::Error("'" + file + "' is not a YAML map");
 
-  YamlSection nbv(root["nbv"], "nbv");
+  YamlSection nbv(root["nbv"], "nbv", &c->given_keys);
   nbv.get("voxel_size", &c->tsdf.voxel_size);
   double w_th = c->tsdf.w_th;
   nbv.get("w_th", &w_th);
@@ -143,6 +148,15 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   cam.get("noise_k", &c->camera.noise_k);
   cam.get("noise_seed", &c->camera.noise_seed);
   cam.get("pitch_deg", &c->camera.pitch_deg);
+  cam.get("noise_sigma0", &c->camera.sensor.noise_sigma0);
+  cam.get("noise_sigma1", &c->camera.sensor.noise_sigma1);
+  cam.get("lateral_noise_px", &c->camera.sensor.lateral_noise_px);
+  cam.get("grazing_dropout_deg", &c->camera.sensor.grazing_dropout_deg);
+  cam.get("dropout_rate", &c->camera.sensor.dropout_rate);
+  cam.get("dropout_patch_fraction", &c->camera.sensor.dropout_patch_fraction);
+  cam.get("dropout_patch_size", &c->camera.sensor.dropout_patch_size);
+  cam.get("dropout_patch_rate", &c->camera.sensor.dropout_patch_rate);
+  cam.get("quantization", &c->camera.sensor.quantization);
   nbv.get("delta_pose", &c->surface.delta_pose);
   nbv.get("d_nu", &c->surface.d_nu);
   nbv.get("d_nu_max", &c->surface.d_nu_max);
@@ -152,7 +166,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   if (!cam.status()) return Status::Error(file + ": " + cam.status().message());
   if (!nbv.status()) return Status::Error(file + ": " + nbv.status().message());
 
-  YamlSection sim(root["depth_sim"], "depth_sim");
+  YamlSection sim(root["depth_sim"], "depth_sim", &c->given_keys);
   sim.get("scene", &c->scene.scene);
   sim.get("scene_up_axis", &c->scene.transform.up_axis);
   sim.get("scene_scale", &c->scene.transform.scale);
@@ -174,7 +188,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   if (!trk.status()) return Status::Error(file + ": " + trk.status().message());
   c->tracker.mpcUsesModelLimits();
 
-  YamlSection m(root["mission"], "mission");
+  YamlSection m(root["mission"], "mission", &c->given_keys);
   m.getVector4("start", &c->start);
   m.get("speed", &c->speed);
   m.get("yaw_rate", &c->yaw_rate);
@@ -190,6 +204,11 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   m.get("mesh_layer_queue", &c->mesh_layer_queue);
   m.get("threads", &c->threads);
   m.get("seed", &c->seed);
+  m.get("pose_drift_rate", &c->pose_error.drift_rate);
+  m.get("pose_yaw_drift_deg", &c->pose_error.yaw_drift_deg);
+  m.get("pose_jitter", &c->pose_error.jitter_position);
+  m.get("pose_jitter_deg", &c->pose_error.jitter_angle_deg);
+  m.get("pose_error_seed", &c->pose_error.seed);
   m.get("collision_radius", &c->path.collision_radius);
   m.get("epsilon", &c->surface.epsilon);
   m.get("parallel_distance", &c->surface.parallel_distance);
@@ -266,6 +285,15 @@ Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir
   *config_file = args.get("config", defaultConfigFile(package_dir, args.get("scene", "plant")));
   if (!config_file->empty()) {
     if (Status s = loadMissionConfig(*config_file, config); !s) return s;
+  }
+  // The scene options given on the command line count as given keys.
+  const std::pair<const char*, const char*> scene_keys[] = {
+      {"scene", "depth_sim/scene"},           {"up-axis", "depth_sim/scene_up_axis"},
+      {"scale", "depth_sim/scene_scale"},     {"fit-size", "depth_sim/scene_fit_size"},
+      {"offset", "depth_sim/scene_offset"},   {"crop-min", "depth_sim/crop_min"},
+      {"crop-max", "depth_sim/crop_max"}};
+  for (const auto& [option, key] : scene_keys) {
+    if (args.has(option)) config->given_keys.insert(key);
   }
   return sceneConfigFromArgs(args, &config->scene);
 }

@@ -87,6 +87,9 @@ MissionResult MissionRunner::run() {
   const DepthCamera camera(camera_config);
   const DepthRenderer renderer(scene_, camera, c.threads);
   const Transform T_B_C = opticalInBody(camera_config);
+  PoseErrorConfig pose_config = c.pose_error;
+  pose_config.seed = c.pose_error.seed + c.seed;
+  PoseErrorModel pose_error(pose_config);
   SurfaceConfig surface = c.surface;
   surface.threads = c.threads;
   FrontierBuilder builder(surface);
@@ -157,10 +160,13 @@ MissionResult MissionRunner::run() {
     next_frame += frame_dt;
     const UavState& state = tracker.state();
     const Eigen::Vector4d uav(state.p_W.x(), state.p_W.y(), state.p_W.z(), state.yaw);
-    // Sense.
-    const Transform T_W_C = levelBodyPose(state.p_W, state.yaw) * T_B_C;
+    // Sense. The UAV flies on its estimated pose; the camera is at the true
+    // one and the frame is fused at the pose odometry reports (pose_error.h).
+    const Transform T_W_C_estimate = levelBodyPose(state.p_W, state.yaw) * T_B_C;
+    pose_error.advance(state.p_W, result.frames);
+    const Transform T_W_C = pose_error.reportedPose(T_W_C_estimate, result.frames);
     const auto t_render = Clock::now();
-    renderer.render(T_W_C, &depth, result.frames);
+    renderer.render(pose_error.truePose(T_W_C_estimate), &depth, result.frames);
     result.times.render += msSince(t_render);
     const auto t_integrate = Clock::now();
     // The mesh layer fuses each frame on a thread of its own while the
@@ -269,6 +275,7 @@ MissionResult MissionRunner::run() {
                                    : "max_path_length: " + std::to_string(c.max_path_length) + " m of path reached";
   }
   result.flight_time = tracker.time();
+  result.pose_error = pose_error.stats();
   result.explorer = explorer.stats();
   result.blacklisted = explorer.blacklist().size();
   result.final_ises = frontier.ises.size();

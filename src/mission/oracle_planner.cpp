@@ -82,6 +82,7 @@ OracleConfig oracleConfigFrom(const MissionConfig& mission) {
   OracleConfig c;
   c.camera = mission.camera;
   c.camera.noise_k = 0.0;  // the oracle sees the true surface
+  c.camera.sensor = SensorModelConfig();
   c.tsdf = mission.tsdf;
   c.collision = mission.collision;
   c.path = mission.path;

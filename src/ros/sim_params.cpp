@@ -31,6 +31,15 @@ void readCameraConfig(ParamReader* reader, CameraConfig* c) {
   reader->get("camera/noise_k", &c->noise_k);
   reader->get("camera/noise_seed", &c->noise_seed);
   reader->get("camera/pitch_deg", &c->pitch_deg);
+  reader->get("camera/noise_sigma0", &c->sensor.noise_sigma0);
+  reader->get("camera/noise_sigma1", &c->sensor.noise_sigma1);
+  reader->get("camera/lateral_noise_px", &c->sensor.lateral_noise_px);
+  reader->get("camera/grazing_dropout_deg", &c->sensor.grazing_dropout_deg);
+  reader->get("camera/dropout_rate", &c->sensor.dropout_rate);
+  reader->get("camera/dropout_patch_fraction", &c->sensor.dropout_patch_fraction);
+  reader->get("camera/dropout_patch_size", &c->sensor.dropout_patch_size);
+  reader->get("camera/dropout_patch_rate", &c->sensor.dropout_patch_rate);
+  reader->get("camera/quantization", &c->sensor.quantization);
 }
 
 void readSceneConfig(ParamReader* reader, SceneConfig* c) {

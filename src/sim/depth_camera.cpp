@@ -31,7 +31,7 @@ Status CameraConfig::validate() const {
   for (const Status& s : checks) {
     if (!s) return s;
   }
-  return Status::Ok();
+  return sensor.validate();
 }
 
 DepthCamera::DepthCamera(const CameraConfig& config) : config_(config) {

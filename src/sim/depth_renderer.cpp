@@ -76,29 +76,48 @@ void DepthRenderer::frameRays(const Transform& T_W_C, FrameRays* rays) const {
 }
 
 void DepthRenderer::render(const Transform& T_W_C, DepthImage* image, uint64_t frame_index) const {
+  const CameraConfig& cfg = camera_.config();
+  const bool measured = cfg.noise_k > 0.0 || cfg.sensor.enabled();
+  if (!measured) {
+    traceRows(T_W_C, image, nullptr, false);
+    return;
+  }
+  // A real sensor: trace the true depth (and, for grazing dropouts, each
+  // hit's incidence), then measure it (sensor_model.h).
+  DepthImage raw;
+  std::vector<float> cos_incidence;
+  if (cfg.sensor.grazing_dropout_deg > 0.0) {
+    cos_incidence.assign(static_cast<size_t>(camera_.width()) * camera_.height(), 1.0f);
+  }
+  traceRows(T_W_C, &raw, cos_incidence.empty() ? nullptr : &cos_incidence, true);
+  applySensorModel(camera_, T_W_C, frame_index, raw, cos_incidence, image, threads_);
+}
+
+void DepthRenderer::traceRows(const Transform& T_W_C, DepthImage* image, std::vector<float>* cos_incidence,
+                              bool raw) const {
   image->resize(camera_.width(), camera_.height());
   const int height = camera_.height();
   FrameRays rays;
   frameRays(T_W_C, &rays);
+  TileOutput out{image, cos_incidence ? cos_incidence->data() : nullptr, raw};
   if (threads_ == 1) {
-    renderRows(rays, 0, height, frame_index, image);
+    renderRows(rays, 0, height, out);
     return;
   }
   const size_t bands = static_cast<size_t>((height + kRowsPerTask - 1) / kRowsPerTask);
   parallelFor(bands, threads_, [&](size_t band) {
     const int row = static_cast<int>(band) * kRowsPerTask;
-    renderRows(rays, row, std::min(height, row + kRowsPerTask), frame_index, image);
+    renderRows(rays, row, std::min(height, row + kRowsPerTask), out);
   });
 }
 
-void DepthRenderer::renderRows(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index,
-                               DepthImage* image) const {
+void DepthRenderer::renderRows(const FrameRays& rays, int row_begin, int row_end, const TileOutput& out) const {
   if (packet_width_ == 16) {
-    renderTiles<RTCRayHit16, 4, 4>(rays, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit16, 4, 4>(rays, row_begin, row_end, out);
   } else if (packet_width_ == 8) {
-    renderTiles<RTCRayHit8, 4, 2>(rays, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit8, 4, 2>(rays, row_begin, row_end, out);
   } else {
-    renderTiles<RTCRayHit4, 2, 2>(rays, row_begin, row_end, frame_index, image);
+    renderTiles<RTCRayHit4, 2, 2>(rays, row_begin, row_end, out);
   }
 }
 
@@ -108,14 +127,13 @@ void DepthRenderer::renderRows(const FrameRays& rays, int row_begin, int row_end
 // so these images are those of the product (test
 // DepthRenderer.RaysAreTheRotatedPixelRays).
 template <typename Packet, int TileW, int TileH>
-void DepthRenderer::renderTiles(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index,
-                                DepthImage* image) const {
+void DepthRenderer::renderTiles(const FrameRays& rays, int row_begin, int row_end, const TileOutput& tile_out) const {
+  DepthImage* image = tile_out.image;
   static_assert(kRowsPerTask % TileW == 0 && kRowsPerTask % TileH == 0, "frame rays are padded to whole tiles");
   const CameraConfig& cfg = camera_.config();
   const float min_z = static_cast<float>(cfg.min_range);
   const float max_z = static_cast<float>(cfg.max_range);
   const int width = camera_.width();
-  const bool noisy = cfg.noise_k > 0.0;
   constexpr float kInf = std::numeric_limits<float>::infinity();
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -157,9 +175,16 @@ void DepthRenderer::renderTiles(const FrameRays& rays, int row_begin, int row_en
         for (int tc = 0; tc < TileW && col0 + tc < width; ++tc) {
           const int k = tr * TileW + tc;
           float z = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? packet.ray.tfar[k] : kInf;
-          if (noisy && z != kInf) {
-            z = noisyDepth(z, cfg.noise_k, cfg.noise_seed, frame_index,
-                           static_cast<uint64_t>(row0 + tr) * width + col0 + tc);
+          if (tile_out.raw) {  // the true depth, for the sensor model
+            out[tc] = z;
+            if (tile_out.cos_incidence && z != kInf) {
+              const Eigen::Vector3f n(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
+              const Eigen::Vector3f d(packet.ray.dir_x[k], packet.ray.dir_y[k], packet.ray.dir_z[k]);
+              const float nd = n.norm() * d.norm();
+              tile_out.cos_incidence[static_cast<size_t>(row0 + tr) * width + col0 + tc] =
+                  nd > 0.0f ? std::abs(n.dot(d)) / nd : 1.0f;
+            }
+            continue;
           }
           z = z < min_z ? -kInf : z;
           out[tc] = z <= max_z ? z : kInf;  // NaN too

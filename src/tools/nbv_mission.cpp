@@ -71,6 +71,7 @@ struct TrialRow {
   double path_length = 0, flight_min = 0, coverage = 0, mean = 0, std_dev = 0, rmse = 0, wall_s = 0;
   double plan_ms_max = 0, frontier_ms_max = 0;
   MissionStageTimes times;
+  PoseErrorStats pose_error;
   FlightProfile profile;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
 };
@@ -293,6 +294,7 @@ int main(int argc, char** argv) {
     row.rmse = eval.error_stats.rmse;
     row.wall_s = r.wall_time;
     row.times = r.times;
+    row.pose_error = r.pose_error;
     row.profile = profileFlight(r.flown, r.flown_t, trial_config.speed);
     row.frames = r.frames;
     row.updates = r.frontier_updates;
@@ -311,6 +313,11 @@ int main(int argc, char** argv) {
                 100.0 * row.mean, 100.0 * row.std_dev, 100.0 * row.rmse, row.wall_s,
                 r.flight_time / std::max(row.wall_s, 1e-9), r.end_reason.c_str());
     std::printf("  flight: %s\n", profileLine(row.profile).c_str());
+    if (config.pose_error.enabled()) {
+      std::printf("  pose error: %.3f m at the end (RMS %.3f m, max %.3f m), yaw %.2f deg (RMS %.2f deg)\n",
+                  r.pose_error.final_position, r.pose_error.rms_position, r.pose_error.max_position,
+                  r.pose_error.final_yaw_deg, r.pose_error.rms_yaw_deg);
+    }
     std::fflush(stdout);
     if (!args.has("no-plots")) {
       const std::string script = std::string(NBV_SOURCE_DIR) + "/scripts/plot_mission.py";
@@ -362,6 +369,12 @@ int main(int argc, char** argv) {
     json.value("full_recomputes", r.full).value("local_updates", r.local).value("legs", r.legs);
     json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
     json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
+    if (config.pose_error.enabled()) {  // the estimate against the truth (pose_error.h)
+      const PoseErrorStats& e = r.pose_error;
+      json.beginObject("pose_error").value("final_m", e.final_position).value("rms_m", e.rms_position);
+      json.value("max_m", e.max_position).value("final_yaw_deg", e.final_yaw_deg).value("rms_yaw_deg", e.rms_yaw_deg);
+      json.endObject();
+    }
     json.beginObject("stage_ms").value("render", r.times.render).value("integrate", r.times.integrate);
     json.value("collision", r.times.collision).value("frontier", r.times.frontier).value("graph", r.times.graph);
     json.value("tour", r.times.tour).value("path", r.times.path).value("tracker", r.times.tracker).endObject();

@@ -12,6 +12,7 @@
 // ROS-free (yaml-cpp). Units: metres, seconds, radians unless a key says _deg.
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "surface_nbv/eval/eval_config.h"
@@ -20,6 +21,7 @@
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/pose_error.h"
 #include "surface_nbv/sim/scene_source.h"
 #include "surface_nbv/surface/surface_config.h"
 #include "surface_nbv/tracking/tracker_sim.h"
@@ -41,6 +43,10 @@ struct MissionConfig {
   // The simulated UAV (YAML section `tracker`: drag, v_max, a_max,
   // yaw_rate_max, jerk_max; the MPC's limits are the model's).
   TrackerSimConfig tracker;
+  // The keys a config file or a command-line option gave ("nbv/voxel_size",
+  // "nbv/camera/max_range", "mission/start", "depth_sim/scene_up_axis"):
+  // deriveSceneDefaults (scene_defaults.h) derives only the others.
+  std::set<std::string> given_keys;
 
   Eigen::Vector4d start{0.0, 0.0, 2.0, 0.0};  // [x, y, z, yaw] at take-off
   double speed = 0.5;              // reference speed [m/s] (the paper's)
@@ -66,6 +72,11 @@ struct MissionConfig {
   // 79 MB. The maps and the flight are the same either way.
   int mesh_layer_queue = 64;
   unsigned int seed = 1;           // path sampling and depth noise (per trial: seed + trial)
+  // Odometry drift and jitter (pose_error.h; mission/pose_drift_rate,
+  // pose_yaw_drift_deg, pose_jitter, pose_jitter_deg, pose_error_seed): the
+  // UAV flies and maps on its estimate, the camera renders at the truth.
+  // Off by default. Its seed is pose_error_seed + seed.
+  PoseErrorConfig pose_error;
 
   // Names the first bad key.
   Status validate() const;

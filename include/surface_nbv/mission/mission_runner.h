@@ -62,6 +62,7 @@ struct MissionResult {
   std::vector<MissionEvent> events;     // one per frontier update
   MissionStageTimes times;
   double max_frontier_ms = 0.0, max_plan_ms = 0.0;  // slowest single update / Explorer decision
+  PoseErrorStats pose_error;            // the estimate against the truth (MissionConfig::pose_error)
 };
 
 class MissionRunner {

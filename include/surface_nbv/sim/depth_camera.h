@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "surface_nbv/sim/sensor_model.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -23,7 +24,10 @@ struct CameraConfig {
   double rate_hz = 30.0;
   // Stereo-like noise: sigma = noise_k * z^2 [1/m]; 0 disables it.
   double noise_k = 0.0;
-  uint64_t noise_seed = 1;
+  uint64_t noise_seed = 1;  // every draw of the sensor model too
+  // The rest of a real sensor (sensor_model.h): ToF-like noise, lateral edge
+  // noise, dropouts, quantisation. All off by default.
+  SensorModelConfig sensor;
   // Mount pitch [deg] about the body's y axis, positive down: the UAV flies
   // level, so the optical axis stays this far below the horizon (RotorS
   // mounts its VI-sensor 0.1 rad = 5.73 deg down). |pitch| < 90 - vfov / 2.

@@ -6,8 +6,10 @@
 // sim compares them). Every width gives the same image. Output is z in the
 // optical frame in metres; REP 117: +Inf for no return within max range,
 // -Inf for a surface closer than min range.
-// Noise (if the camera's noise_k > 0) is a pure function of (seed, frame
-// index, pixel), so an image repeats exactly whatever the thread count.
+// Noise (if the camera's noise_k > 0) and the rest of the sensor model
+// (CameraConfig::sensor, sensor_model.h) are pure functions of (seed, frame
+// index, pixel), so an image repeats exactly whatever the thread count: the
+// renderer traces the true depth, then measures it (applySensorModel).
 // Thread safety: render() is const; one renderer may serve many threads.
 #pragma once
 
@@ -45,10 +47,18 @@ class DepthRenderer {
     std::vector<double> col_x, col_y, col_z;  // padded to whole tiles
     std::vector<double> row_x, row_y, row_z;  // row_z includes R(2,2)
   };
+  // Where traced tiles go: REP 117 depths, or (raw) the true hit depth and
+  // +Inf for no hit, with each hit's |cos| of incidence when asked for.
+  struct TileOutput {
+    DepthImage* image;
+    float* cos_incidence;
+    bool raw;
+  };
   void frameRays(const Transform& T_W_C, FrameRays* rays) const;
-  void renderRows(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
+  void traceRows(const Transform& T_W_C, DepthImage* image, std::vector<float>* cos_incidence, bool raw) const;
+  void renderRows(const FrameRays& rays, int row_begin, int row_end, const TileOutput& out) const;
   template <typename Packet, int TileW, int TileH>
-  void renderTiles(const FrameRays& rays, int row_begin, int row_end, uint64_t frame_index, DepthImage* image) const;
+  void renderTiles(const FrameRays& rays, int row_begin, int row_end, const TileOutput& out) const;
 
   const RaycastScene& scene_;
   DepthCamera camera_;
