@@ -6,6 +6,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "surface_nbv/mission/scene_defaults.h"
+
 namespace surface_nbv {
 namespace {
 
@@ -286,16 +288,7 @@ Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir
   if (!config_file->empty()) {
     if (Status s = loadMissionConfig(*config_file, config); !s) return s;
   }
-  // The scene options given on the command line count as given keys.
-  const std::pair<const char*, const char*> scene_keys[] = {
-      {"scene", "depth_sim/scene"},           {"up-axis", "depth_sim/scene_up_axis"},
-      {"scale", "depth_sim/scene_scale"},     {"fit-size", "depth_sim/scene_fit_size"},
-      {"offset", "depth_sim/scene_offset"},   {"crop-min", "depth_sim/crop_min"},
-      {"crop-max", "depth_sim/crop_max"}};
-  for (const auto& [option, key] : scene_keys) {
-    if (args.has(option)) config->given_keys.insert(key);
-  }
-  return sceneConfigFromArgs(args, &config->scene);
+  return applySceneOptions(args, config);
 }
 
 }  // namespace surface_nbv

@@ -5,8 +5,11 @@
 //
 //   nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S]
 //               [--out DIR] [--threads N] [--max-flight-time S] [--max-path-length M]
-//               [--coverage-every S] [--no-plots]
+//               [--voxel-size M] [--coverage-every S] [--no-plots]
 //
+// Keys no config gives (bounds, take-off pose, camera range, voxel size,
+// Table 1) are derived from the scene (scene_defaults.h): printed first and
+// written to report.json ("derived").
 // Per trial (DIR/trial_K/): reconstruction.ply, map.tsdf, path.csv (flown
 // poses), events.csv (every frontier update), eval/ (nbv_evaluate's report and
 // clouds) and PNG plots; in DIR: report.json and report.md over all trials.
@@ -31,6 +34,7 @@
 #include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/flight_profile.h"
 #include "surface_nbv/mission/mission_runner.h"
+#include "surface_nbv/mission/scene_defaults.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
@@ -44,9 +48,11 @@ const char* kUsage =
     "usage: nbv_mission --scene plant|statue|FILE [--config YAML] [--trials N] [--seed S] [--out DIR]\n"
     "                   [--threads N] [--max-flight-time S] [--max-path-length M] [--up-axis z|y]\n"
     "                   [--scale S] [--fit-size X,Y,Z] [--offset X,Y,Z] [--crop-min X,Y,Z] [--crop-max X,Y,Z]\n"
-    "                   [--coverage-every S] [--oracle-gain N]\n"
+    "                   [--voxel-size M] [--coverage-every S] [--oracle-gain N]\n"
     "                   [--oracle-lambda L] [--no-plots]\n"
-    "  --config defaults to config/<scene name>.yaml of the package when it exists.\n"
+    "  --config defaults to config/<scene name>.yaml of the package when it exists; the keys no config gives\n"
+    "    (bounds, take-off pose, camera range, voxel size, Table 1) are derived from the scene.\n"
+    "  --voxel-size M sets nbv/voxel_size over the config's.\n"
     "  --coverage-every S evaluates the reconstruction every S seconds of flight (coverage over time).\n"
     "  --oracle-gain N (a diagnostic) flies the best of the tour's first N viewpoints first, ranked by the\n"
     "    true surface not yet observed in their view (the scene's mesh) times exp(-L d), L = lambda_tc\n"
@@ -151,7 +157,7 @@ void meanStd(const std::vector<double>& v, double* mean, double* sd) {
 int main(int argc, char** argv) {
   std::vector<std::string> options = sceneOptionNames();
   options.insert(options.end(), {"config", "trials", "seed", "out", "threads", "max-flight-time", "max-path-length",
-                                "coverage-every", "oracle-gain", "oracle-lambda"});
+                                "coverage-every", "oracle-gain", "oracle-lambda", "voxel-size"});
   CliArgs args(options, {"help", "no-plots"});
   bool help = false;
   if (Status s = args.parseCommand(argc, argv, kUsage, std::cout, &help); !s) return fail(s.message());
@@ -167,7 +173,8 @@ int main(int argc, char** argv) {
                            args.getDouble("coverage-every", &coverage_every),
                            args.getInt("threads", &config.threads),
                            args.getDouble("max-flight-time", &config.max_flight_time),
-                           args.getDouble("max-path-length", &config.max_path_length)};
+                           args.getDouble("max-path-length", &config.max_path_length),
+                           args.getDouble("voxel-size", &config.tsdf.voxel_size)};
   for (const Status& s : parsed)
     if (!s) return fail(s.message());
   if (trials < 1 || trials > 100 || seed < 0) return fail("--trials expects 1..100 and --seed >= 0");
@@ -178,7 +185,8 @@ int main(int argc, char** argv) {
     if (args.has("oracle-lambda") && !(config.explorer.head_lambda >= 0.0)) return fail("--oracle-lambda expects L >= 0");
     config.explorer.head_lookahead = oracle_gain;
   }
-  if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
+  if (args.has("voxel-size")) config.given_keys.insert("nbv/voxel_size");
+  if (Status s = config.scene.validate(); !s) return fail(s.message());
   const std::string scene_name = std::filesystem::path(config.scene.scene).stem().string();
   const std::string out_dir = args.get("out", "output/mission_" + scene_name);
   std::error_code ec;
@@ -187,6 +195,11 @@ int main(int argc, char** argv) {
 
   TriangleMesh mesh;
   if (Status s = loadScene(config.scene, &mesh); !s) return fail(s.message());
+  SceneDefaults derived;
+  if (Status s = deriveSceneDefaults(mesh, &config, &derived); !s) {
+    return fail("scene '" + config.scene.scene + "': " + s.message());
+  }
+  if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
   std::unique_ptr<RaycastScene> scene;
   if (Status s = RaycastScene::create(mesh, &scene); !s) return fail(s.message());
   const AlignedBox extent = mesh.bounds();
@@ -194,7 +207,10 @@ int main(int argc, char** argv) {
               "%d trial(s) from seed %d\n",
               config.scene.scene.c_str(), mesh.numTriangles(), mesh.area(), extent.min.x(), extent.min.y(),
               extent.min.z(), extent.max.x(), extent.max.y(), extent.max.z(),
-              config_file.empty() ? "(defaults)" : config_file.c_str(), config.tsdf.voxel_size, trials, seed);
+              config_file.empty() ? "(none)" : config_file.c_str(), config.tsdf.voxel_size, trials, seed);
+  std::printf("derived from the scene (%s class, %.1f m footprint): %s\n", derived.size_class.c_str(),
+              std::max(extent.size().x(), extent.size().y()), derived.summary().c_str());
+  for (const std::string& w : derived.warnings) std::fprintf(stderr, "nbv_mission: warning: %s\n", w.c_str());
   const double slack = 0.5 * config.tsdf.voxel_size;  // a ground at z = -1e-6 is inside
   if ((extent.min.array() < config.tsdf.bounds.min.array() - slack).any() ||
       (extent.max.array() > config.tsdf.bounds.max.array() + slack).any()) {
@@ -354,6 +370,24 @@ int main(int argc, char** argv) {
   json.beginObject().value("scene", config.scene.scene).value("config", config_file).value("trials", trials);
   json.value("seed", seed).value("voxel_size_m", config.tsdf.voxel_size).value("e_max_m", eval.config.eMax());
   json.value("threads", config.threads).value("render_packet_rays", packet_rays).value("voxel_loop", voxel_loop);
+  json.value("size_class", derived.size_class).value("map_bytes_estimate", derived.map_bytes);
+  json.beginArray("scene_box_m");
+  for (double v : {extent.min.x(), extent.min.y(), extent.min.z(), extent.max.x(), extent.max.y(), extent.max.z()}) {
+    json.value("", v);
+  }
+  json.endArray().beginObject("derived");  // the keys no config gave, as derived (scene_defaults.h)
+  for (const DerivedKey& k : derived.derived) {
+    if (k.boolean) {
+      json.value(k.key, k.values[0] != 0.0);
+    } else if (k.values.size() == 1) {
+      json.value(k.key, k.values[0]);
+    } else {
+      json.beginArray(k.key);
+      for (double v : k.values) json.value("", v);
+      json.endArray();
+    }
+  }
+  json.endObject();
   json.beginObject("summary");
   for (Stat& s : stats) {
     double m, sd;
@@ -400,6 +434,7 @@ int main(int argc, char** argv) {
      << seed + trials - 1 << ")\n\nConfig: `" << config_file << "`, voxel " << config.tsdf.voxel_size
      << " m, e_max " << 100.0 * eval.config.eMax() << " cm. Compute: " << config.threads << " thread(s), "
      << packet_rays << "-ray render packets, " << voxel_loop << " voxel loop.\n\n"
+     << "Derived from the scene (" << derived.size_class << " class): " << derived.summary() << ".\n\n"
      << "| trial | seed | completed | path [m] | time [min] | coverage [%] | mean [cm] | std [cm] | RMSE [cm] | "
         "wall [s] | frontier updates | full / local | legs / failures | blacklisted |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";

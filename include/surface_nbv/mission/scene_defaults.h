@@ -1,0 +1,105 @@
+// What a mission takes from its scene when no config gives it (issue #39):
+// `scripts/explore my_structure.dae` with no --config. ROS-free; nbv_mission
+// and nbv_scene (for explore_sim.launch) call the same function, so the
+// headless mission and the ROS nodes fly the same derived parameters.
+//
+// A key is derived only when neither a config file nor a command-line option
+// gave it (MissionConfig::given_keys): a given key always wins.
+//
+// Size class, by the scene's footprint D = the larger of its x and y extents
+// (the paper's Table 1 where it applies):
+//   D <= 10 m  small       voxel 0.1 m, camera range [0.5, 8] m, delta_pose 3.0 m,
+//                          d_nu 2, d_nu_max 5, lambda_tc 0.3, lambda_ic 0.03, no
+//                          mesh layer (config/box.yaml)
+//   D <= 30 m  statue      Table 1 Statue: 0.15 m, [1, 5] m, 3.6 m, 2.5, 5, 0.17, 0.15;
+//                          mesh layer of half voxels (config/statue.yaml)
+//   D > 30 m   powerplant  Table 1 Powerplant: 0.3 m, [1.6, 8] m, 4.7 m, 2, 5, 0.3, 0.03;
+//                          mesh layer of third voxels (config/powerplant.yaml)
+// The mesh layer (statue and powerplant classes): mesh_voxel_size the
+// planning voxel / 2 or / 3, mesh_truncation 6 of its voxels, the weight
+// drop-off, mesh_min_weight 0, as the shipped configs.
+//
+// Bounds: the scene's box grown by the camera's max range on every side but
+// the floor, which stays at the scene's lowest point (the ground).
+// Start: at clamp(H / 4, 2, 4) m above the floor (H the scene's height),
+// outside the scene's box, facing the box's centre: beside the middle of the
+// -x face first, then +x, -y, +y, then the four corners, each from
+// start_free_radius + 0.5 m out, stepping 1 m out up to the bounds; the
+// first whose take-off ball (start_free_radius, marked free at take-off)
+// stays clear of every triangle, whose UAV (collision radius) stays inside
+// the bounds and from which the mesh lies within the camera's range.
+//
+// Refused, each with one line saying why and what to do:
+//  - an empty mesh, one of zero area, one less than 1 m across or a line;
+//  - a mesh that looks as if it lay on its side (its longer horizontal extent
+//    more than 2.5 times both its other extents), unless the up axis was
+//    given (--up-axis y stands a Y-up model upright, --up-axis z keeps it);
+//    checked only when the bounds are derived;
+//  - a map that does not fit in memory (estimateMapBytes) or in the map's
+//    block limit at the voxel size: the message gives the size and the
+//    voxel size that would fit.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/util/status.h"
+
+namespace surface_nbv {
+
+// One derived key: "nbv/bounds_min" -> {x, y, z}. `boolean` keys hold 0 or 1.
+struct DerivedKey {
+  std::string key;
+  std::vector<double> values;
+  bool boolean = false;
+
+  // The value as YAML ("0.15", "[-9, -9, 0]", "true").
+  std::string yamlValue() const;
+};
+
+struct SceneDefaults {
+  AlignedBox scene_box;     // the scene's triangles' box, metres
+  double area_m2 = 0.0;
+  std::string size_class;   // "small", "statue" or "powerplant"
+  std::vector<DerivedKey> derived;  // in the order they were derived
+  std::vector<std::string> warnings;
+  double map_bytes = 0.0;   // estimateMapBytes of the final config
+
+  bool derivedAny() const { return !derived.empty(); }
+  // "nbv/voxel_size 0.15, nbv/bounds_min [..], ..." or "nothing (every key given)".
+  std::string summary() const;
+  // The derived keys as a YAML document (nested maps: nbv: camera: ...),
+  // "{}\n" when none; rosparam-loadable.
+  std::string yaml() const;
+};
+
+struct SceneDefaultsOptions {
+  // The memory the maps may take [bytes]; 0: half of this machine's RAM.
+  double memory_budget = 0.0;
+};
+
+// Derives every key of *config that config->given_keys does not hold from
+// `mesh` (the scene as the mission flies it, after its up axis, scale and
+// crop), then checks the map's memory. The derived config still needs
+// validate(). On error *config may be partly derived.
+Status deriveSceneDefaults(const TriangleMesh& mesh, MissionConfig* config, SceneDefaults* out,
+                           const SceneDefaultsOptions& options = SceneDefaultsOptions());
+
+// Bytes the mission's maps take at most over config.tsdf.bounds: the planning
+// TSDF with every block allocated (8 bytes a voxel, as free space is carved
+// wherever the camera looks) plus a byte a voxel for the frontier's states,
+// the collision map's 30 bytes a cell, and the mesh layer's blocks within
+// its truncation of `area_m2` of surface.
+double estimateMapBytes(const MissionConfig& config, double area_m2);
+
+// The scene options of the command line (sceneConfigFromArgs: --scene,
+// --up-axis, --scale, --fit-size, --offset, --crop-min, --crop-max) over
+// config->scene, each recorded as given (depth_sim/scene_up_axis, ...).
+Status applySceneOptions(const CliArgs& args, MissionConfig* config);
+
+// The smallest distance from `p` to a triangle of `mesh` (infinity when empty).
+double distanceToMesh(const TriangleMesh& mesh, const Eigen::Vector3d& p);
+
+}  // namespace surface_nbv
