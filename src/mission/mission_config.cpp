@@ -72,6 +72,9 @@ class YamlSection {
 
 }  // namespace
 
+// The body of loadMissionConfig on a parsed document; `file` names it in errors.
+Status loadMissionConfigNode(const YAML::Node& root, const std::string& file, MissionConfig* c);
+
 Status MissionConfig::validate() const {
   if (Status s = scene.validate(); !s) return s;
   if (Status s = camera.validate(); !s) return s;
@@ -115,6 +118,16 @@ Status MissionConfig::validate() const {
   return Status::Ok();
 }
 
+Status loadMissionConfigText(const std::string& text, const std::string& name, MissionConfig* c) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    return Status::Error("cannot read " + name + ": " + e.what());
+  }
+  return loadMissionConfigNode(root, name, c);
+}
+
 Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   YAML::Node root;
   try {
@@ -122,6 +135,10 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
   } catch (const YAML::Exception& e) {
     return Status::Error("cannot read '" + file + "': " + e.what());
   }
+  return loadMissionConfigNode(root, file, c);
+}
+
+Status loadMissionConfigNode(const YAML::Node& root, const std::string& file, MissionConfig* c) {
   if (!root.IsMap()) return Status::Error("'" + file + "' is not a YAML map");
 
   YamlSection nbv(root["nbv"], "nbv", &c->given_keys);
@@ -180,7 +197,7 @@ Status loadMissionConfig(const std::string& file, MissionConfig* c) {
 
   // The simulated UAV's limits, the keys mpc_tracker reads (its MPC keeps
   // the model's limits, as the node's does).
-  YamlSection trk(root["tracker"], "tracker");
+  YamlSection trk(root["tracker"], "tracker", &c->given_keys);
   trk.get("drag", &c->tracker.model.drag);
   trk.get("v_max", &c->tracker.model.v_max);
   trk.get("a_max", &c->tracker.model.a_max);

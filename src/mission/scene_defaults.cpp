@@ -6,28 +6,42 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
+
+#include <yaml-cpp/yaml.h>
 
 namespace surface_nbv {
 namespace {
 
-// One size class: the camera, the voxel and Table 1's planning parameters.
+// One size class and its reference config (config/<file>).
 struct SizeClass {
   const char* name;
-  double max_footprint;     // the class holds footprints up to this [m]
-  double voxel_size, min_range, max_range, delta_pose, d_nu, d_nu_max, lambda_tc, lambda_ic;
-  double mesh_voxel_divisor;  // 0: no mesh layer
+  double max_footprint;  // the class holds footprints up to this [m]
+  const char* config;
 };
 
-// See scene_defaults.h; the rows are config/box.yaml and Table 1's columns.
+// See scene_defaults.h.
 const SizeClass kClasses[] = {
-    {"small", 10.0, 0.1, 0.5, 8.0, 3.0, 2.0, 5.0, 0.3, 0.03, 0.0},
-    {"statue", 30.0, 0.15, 1.0, 5.0, 3.6, 2.5, 5.0, 0.17, 0.15, 2.0},
-    {"powerplant", std::numeric_limits<double>::infinity(), 0.3, 1.6, 8.0, 4.7, 2.0, 5.0, 0.3, 0.03, 3.0},
+    {"small", 10.0, "box.yaml"},
+    {"statue", 30.0, "statue.yaml"},
+    {"powerplant", std::numeric_limits<double>::infinity(), "powerplant.yaml"},
 };
 
-constexpr double kMeshTruncationVoxels = 6.0;  // 0.6 m at 0.1 m, 0.45 m at 0.075 m
+// The sections a reference config lends keys from when no config file was
+// read, and its keys that are another scene's own or a budget, never lent.
+const char* const kLentSections[] = {"nbv", "tracker", "mission"};
+const char* const kNeverLent[] = {"nbv/bounds_min", "nbv/bounds_max", "mission/start", "mission/max_flight_time",
+                                  "mission/max_path_length"};
+// The keys that follow the scene's size, lent over a config file too.
+const char* const kSizeKeys[] = {"nbv/voxel_size", "nbv/camera/min_range", "nbv/camera/max_range", "nbv/delta_pose",
+                                 "nbv/d_nu", "nbv/d_nu_max", "nbv/lambda_tc", "nbv/lambda_ic",
+                                 "nbv/approach_range_fraction", "nbv/mesh_voxel_size", "nbv/mesh_truncation",
+                                 "nbv/mesh_weight_dropoff", "nbv/mesh_min_weight"};
+// Lent together or not at all: a mesh layer is these three keys.
+const char* const kMeshLayerKeys[] = {"nbv/mesh_voxel_size", "nbv/mesh_truncation", "nbv/mesh_weight_dropoff"};
+
 constexpr double kLyingAspect = 2.5;
-constexpr double kMinExtent = 1.0;             // [m]
+constexpr double kMinExtent = 1.0;  // [m]
 
 // To the micrometre: float vertices print as the numbers they stand for.
 std::string format(double v) {
@@ -78,39 +92,94 @@ Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-// Derives into *config and records what it did.
-class Deriver {
- public:
-  Deriver(MissionConfig* config, SceneDefaults* out) : c_(*config), out_(*out) {}
+// "a/b/c" -> sections {a, b} and leaf c: the derived keys as nested YAML.
+std::string nestedYaml(const std::vector<DerivedKey>& keys) {
+  struct Node {
+    std::vector<std::string> order;
+    std::map<std::string, Node> children;
+    std::map<std::string, std::string> leaves;
+  };
+  Node root;
+  for (const DerivedKey& k : keys) {
+    Node* node = &root;
+    size_t from = 0;
+    for (size_t slash; (slash = k.key.find('/', from)) != std::string::npos; from = slash + 1) {
+      const std::string section = k.key.substr(from, slash - from);
+      if (!node->children.count(section) && !node->leaves.count(section)) node->order.push_back(section);
+      node = &node->children[section];
+    }
+    const std::string leaf = k.key.substr(from);
+    if (!node->leaves.count(leaf)) node->order.push_back(leaf);
+    node->leaves[leaf] = k.value;
+  }
+  std::string text;
+  const auto write = [&text](const auto& self, const Node& node, const std::string& indent) -> void {
+    for (const std::string& name : node.order) {
+      if (node.leaves.count(name)) {
+        text += indent + name + ": " + node.leaves.at(name) + "\n";
+      } else {
+        text += indent + name + ":\n";
+        self(self, node.children.at(name), indent + "  ");
+      }
+    }
+  };
+  write(write, root, "");
+  return text;
+}
 
-  bool given(const std::string& key) const { return c_.given_keys.count(key) > 0; }
+// Every leaf of `node` as "prefix/key" -> its YAML text (flow style).
+void collectLeaves(const YAML::Node& node, const std::string& prefix, std::vector<DerivedKey>* out) {
+  for (const auto& kv : node) {
+    const std::string key = prefix + "/" + kv.first.as<std::string>();
+    if (kv.second.IsMap()) {
+      collectLeaves(kv.second, key, out);
+    } else {
+      YAML::Emitter e;
+      e << YAML::Flow << kv.second;
+      out->push_back({key, e.c_str()});
+    }
+  }
+}
 
-  // Sets *field to `v` unless `key` was given.
-  template <typename T>
-  void set(const std::string& key, T* field, double v) {
-    if (given(key)) return;
-    *field = static_cast<T>(v);
-    out_.derived.push_back({key, {v}, false});
+// The keys the reference config lends: those of its sections (with
+// size_keys_only, of kSizeKeys) the user's config leaves out, a mesh layer
+// whole or not at all, scaled to a given voxel size.
+Status lentKeys(const std::string& file, const MissionConfig& c, bool size_keys_only, std::vector<DerivedKey>* lent) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    return Status::Error("cannot read the reference config '" + file + "': " + e.what());
   }
-  void setBool(const std::string& key, bool* field, bool v) {
-    if (given(key)) return;
-    *field = v;
-    out_.derived.push_back({key, {v ? 1.0 : 0.0}, true});
+  std::vector<DerivedKey> all;
+  for (const char* section : kLentSections) {
+    if (root[section] && root[section].IsMap()) collectLeaves(root[section], section, &all);
   }
-  void setVector(const std::string& key, Eigen::Vector3d* field, const Eigen::Vector3d& v) {
-    if (given(key)) return;
-    *field = v;
-    out_.derived.push_back({key, {v.x(), v.y(), v.z()}, false});
+  const auto given = [&c](const std::string& key) { return c.given_keys.count(key) > 0; };
+  bool mesh_layer_given = false;
+  for (const char* key : kMeshLayerKeys) mesh_layer_given = mesh_layer_given || given(key);
+  double reference_voxel = 0.0;
+  for (const DerivedKey& k : all)
+    if (k.key == "nbv/voxel_size") reference_voxel = std::atof(k.value.c_str());
+  const double voxel_scale = given("nbv/voxel_size") && reference_voxel > 0.0 ? c.tsdf.voxel_size / reference_voxel : 1.0;
+  for (DerivedKey k : all) {
+    if (given(k.key) || std::count(std::begin(kNeverLent), std::end(kNeverLent), k.key)) continue;
+    if (size_keys_only && !std::count(std::begin(kSizeKeys), std::end(kSizeKeys), k.key)) continue;
+    const bool mesh_layer_key = std::count(std::begin(kMeshLayerKeys), std::end(kMeshLayerKeys), k.key) > 0;
+    if (mesh_layer_key && mesh_layer_given) continue;
+    if (mesh_layer_key && k.key != "nbv/mesh_weight_dropoff" && voxel_scale != 1.0) {
+      k.value = format(voxel_scale * std::atof(k.value.c_str()));
+    }
+    lent->push_back(k);
   }
-  void setStart(const Eigen::Vector4d& v) {
-    c_.start = v;
-    out_.derived.push_back({"mission/start", {v[0], v[1], v[2], v[3]}, false});
-  }
+  return Status::Ok();
+}
 
- private:
-  MissionConfig& c_;
-  SceneDefaults& out_;
-};
+std::string vectorText(const double* v, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? ", " : "") + format(v[i]);
+  return s + "]";
+}
 
 Status checkMesh(const TriangleMesh& mesh, const Eigen::Vector3d& size) {
   if (mesh.empty()) return Status::Error("the scene has no triangles");
@@ -176,55 +245,50 @@ Status checkMemory(const MissionConfig& c, double area, double budget, SceneDefa
 
 }  // namespace
 
-std::string DerivedKey::yamlValue() const {
-  if (boolean) return values.at(0) != 0.0 ? "true" : "false";
-  if (values.size() == 1) return format(values[0]);
-  std::string s = "[";
-  for (size_t i = 0; i < values.size(); ++i) s += (i ? ", " : "") + format(values[i]);
-  return s + "]";
-}
-
 std::string SceneDefaults::summary() const {
   if (derived.empty()) return "nothing (every key given)";
   std::string s;
-  for (const DerivedKey& k : derived) s += (s.empty() ? "" : ", ") + k.key + " " + k.yamlValue();
+  size_t others = 0;
+  for (const DerivedKey& k : derived) {
+    const bool shown = std::count(std::begin(kSizeKeys), std::end(kSizeKeys), k.key) ||
+                       k.key.rfind("nbv/bounds_", 0) == 0 || k.key == "mission/start";
+    if (shown) s += (s.empty() ? "" : ", ") + k.key + " " + k.value;
+    others += shown ? 0 : 1;
+  }
+  if (others > 0) s += (s.empty() ? "" : "; ") + std::to_string(others) + " more keys from " + reference_config;
   return s;
 }
 
 std::string SceneDefaults::yaml() const {
   if (derived.empty()) return "{}\n";
-  // Nested maps in first-seen order of each path's sections.
-  struct Node {
-    std::vector<std::string> order;
-    std::map<std::string, Node> children;
-    std::map<std::string, std::string> leaves;
-  };
-  Node root;
+  return "# Derived from the scene (scene_defaults.h, " + size_class + " class): the keys no config gave.\n" +
+         nestedYaml(derived);
+}
+
+void SceneDefaults::writeJson(JsonWriter* json) const {
+  json->beginObject("derived");
   for (const DerivedKey& k : derived) {
-    Node* node = &root;
-    size_t from = 0;
-    for (size_t slash; (slash = k.key.find('/', from)) != std::string::npos; from = slash + 1) {
-      const std::string section = k.key.substr(from, slash - from);
-      if (!node->children.count(section) && !node->leaves.count(section)) node->order.push_back(section);
-      node = &node->children[section];
+    if (k.value == "true" || k.value == "false") {
+      json->value(k.key, k.value == "true");
+      continue;
     }
-    const std::string leaf = k.key.substr(from);
-    if (!node->leaves.count(leaf)) node->order.push_back(leaf);
-    node->leaves[leaf] = k.yamlValue();
+    YAML::Node node;
+    try {
+      node = YAML::Load(k.value);
+    } catch (const YAML::Exception&) {
+    }
+    double number = 0.0;
+    if (node.IsSequence()) {
+      json->beginArray(k.key);
+      for (const auto& item : node) json->value("", item.as<double>(0.0));
+      json->endArray();
+    } else if (node.IsScalar() && YAML::convert<double>::decode(node, number)) {
+      json->value(k.key, number);
+    } else {
+      json->value(k.key, k.value);
+    }
   }
-  std::string text = "# Derived from the scene by nbv_scene --derive-yaml (scene_defaults.h): the keys no config gave.\n";
-  const auto write = [&text](const auto& self, const Node& node, const std::string& indent) -> void {
-    for (const std::string& name : node.order) {
-      if (node.leaves.count(name)) {
-        text += indent + name + ": " + node.leaves.at(name) + "\n";
-      } else {
-        text += indent + name + ":\n";
-        self(self, node.children.at(name), indent + "  ");
-      }
-    }
-  };
-  write(write, root, "");
-  return text;
+  json->endObject();
 }
 
 double estimateMapBytes(const MissionConfig& c, double area_m2) {
@@ -272,8 +336,8 @@ double distanceToMesh(const TriangleMesh& mesh, const Eigen::Vector3d& p) {
   return std::sqrt(best2);
 }
 
-Status deriveSceneDefaults(const TriangleMesh& mesh, MissionConfig* config, SceneDefaults* out,
-                           const SceneDefaultsOptions& options) {
+Status deriveSceneDefaults(const TriangleMesh& mesh, const std::string& package_dir, MissionConfig* config,
+                           SceneDefaults* out, const SceneDefaultsOptions& options) {
   *out = SceneDefaults();
   MissionConfig& c = *config;
   const AlignedBox box = mesh.bounds();
@@ -281,53 +345,48 @@ Status deriveSceneDefaults(const TriangleMesh& mesh, MissionConfig* config, Scen
   out->scene_box = box;
   if (Status s = checkMesh(mesh, size); !s) return s;
   out->area_m2 = mesh.area();
-  Deriver d(config, out);
-  const bool bounds_given = d.given("nbv/bounds_min") && d.given("nbv/bounds_max");
-  if (!bounds_given && !d.given("depth_sim/scene_up_axis")) {
+  const auto given = [&c](const std::string& key) { return c.given_keys.count(key) > 0; };
+  if (!(given("nbv/bounds_min") && given("nbv/bounds_max")) && !given("depth_sim/scene_up_axis")) {
     if (Status s = checkUpAxis(size); !s) return s;
   }
 
-  // The camera, the voxels and Table 1 by the footprint.
+  // The size class's reference config lends the keys the user's leaves out.
   const double footprint = std::max(size.x(), size.y());
   const SizeClass* k = &kClasses[0];
   while (footprint > k->max_footprint) ++k;
   out->size_class = k->name;
-  d.set("nbv/voxel_size", &c.tsdf.voxel_size, k->voxel_size);
-  d.set("nbv/camera/min_range", &c.camera.min_range, k->min_range);
-  d.set("nbv/camera/max_range", &c.camera.max_range, k->max_range);
-  d.set("nbv/delta_pose", &c.surface.delta_pose, k->delta_pose);
-  d.set("nbv/d_nu", &c.surface.d_nu, k->d_nu);
-  d.set("nbv/d_nu_max", &c.surface.d_nu_max, k->d_nu_max);
-  d.set("nbv/lambda_tc", &c.explorer.graph.lambda_tc, k->lambda_tc);
-  d.set("nbv/lambda_ic", &c.explorer.graph.lambda_ic, k->lambda_ic);
-  if (k->mesh_voxel_divisor > 0.0 && !d.given("nbv/mesh_truncation") && !d.given("nbv/mesh_voxel_size")) {
-    const double mesh_voxel = c.tsdf.voxel_size / k->mesh_voxel_divisor;
-    d.set("nbv/mesh_voxel_size", &c.tsdf.mesh_voxel_size, mesh_voxel);
-    d.set("nbv/mesh_truncation", &c.tsdf.mesh_truncation, kMeshTruncationVoxels * mesh_voxel);
-    d.setBool("nbv/mesh_weight_dropoff", &c.tsdf.mesh_weight_dropoff, true);
-    d.set("nbv/mesh_min_weight", &c.tsdf.mesh_min_weight, 0.0);
+  out->reference_config = package_dir + "/config/" + k->config;
+  std::vector<DerivedKey> lent;
+  if (Status s = lentKeys(out->reference_config, c, options.config_file, &lent); !s) return s;
+  const std::set<std::string> user_given = c.given_keys;
+  if (!lent.empty()) {
+    if (Status s = loadMissionConfigText(nestedYaml(lent), out->reference_config, &c); !s) return s;
   }
-  c.surface.camera = c.camera;
-  c.explorer.gaze.camera = c.camera;
+  c.given_keys = user_given;
+  out->derived = lent;
 
   // The bounds: the box and the camera's range around it, the floor at the ground.
   const double margin = c.camera.max_range;
-  d.setVector("nbv/bounds_min", &c.tsdf.bounds.min,
-              Eigen::Vector3d(box.min.x() - margin, box.min.y() - margin, box.min.z()));
-  d.setVector("nbv/bounds_max", &c.tsdf.bounds.max, box.max + Eigen::Vector3d::Constant(margin));
+  if (!given("nbv/bounds_min")) {
+    c.tsdf.bounds.min = Eigen::Vector3d(box.min.x() - margin, box.min.y() - margin, box.min.z());
+    out->derived.push_back({"nbv/bounds_min", vectorText(c.tsdf.bounds.min.data(), 3)});
+  }
+  if (!given("nbv/bounds_max")) {
+    c.tsdf.bounds.max = box.max + Eigen::Vector3d::Constant(margin);
+    out->derived.push_back({"nbv/bounds_max", vectorText(c.tsdf.bounds.max.data(), 3)});
+  }
   const AlignedBox& bounds = c.tsdf.bounds;
 
   const double radius = c.start_free_radius;
   const double uav = c.path.collision_radius;
-  if (!d.given("mission/start")) {
+  if (!given("mission/start")) {
     const double z = bounds.min.z() + std::max(std::clamp(0.25 * size.z(), 2.0, 4.0), uav + 0.5);
     const Eigen::Vector3d centre = box.center();
     const double s = std::sqrt(0.5);
     // Directions out of the box: the faces' middles, then the corners.
     const Eigen::Vector2d dirs[] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-s, -s}, {s, -s}, {-s, s}, {s, s}};
     bool found = false;
-    const double reach = std::max(margin, 1.0);
-    for (double out_by = radius + 0.5; !found && out_by <= reach + 1e-9; out_by += 1.0) {
+    for (double out_by = radius + 0.5; !found && out_by <= std::max(margin, 1.0) + 1e-9; out_by += 1.0) {
       for (const Eigen::Vector2d& dir : dirs) {
         // From the box's face (its corner for a diagonal) out along dir.
         Eigen::Vector3d p(dir.x() < 0 ? box.min.x() : dir.x() > 0 ? box.max.x() : centre.x(),
@@ -337,7 +396,8 @@ Status deriveSceneDefaults(const TriangleMesh& mesh, MissionConfig* config, Scen
         if (!bounds.contains(lo) || !bounds.contains(hi)) continue;
         const double clear = distanceToMesh(mesh, p);
         if (clear <= radius || clear <= uav || clear > c.camera.max_range) continue;
-        d.setStart(Eigen::Vector4d(p.x(), p.y(), p.z(), std::atan2(centre.y() - p.y(), centre.x() - p.x())));
+        c.start = Eigen::Vector4d(p.x(), p.y(), p.z(), std::atan2(centre.y() - p.y(), centre.x() - p.x()));
+        out->derived.push_back({"mission/start", vectorText(c.start.data(), 4)});
         found = true;
         break;
       }

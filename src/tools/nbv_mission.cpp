@@ -196,7 +196,9 @@ int main(int argc, char** argv) {
   TriangleMesh mesh;
   if (Status s = loadScene(config.scene, &mesh); !s) return fail(s.message());
   SceneDefaults derived;
-  if (Status s = deriveSceneDefaults(mesh, &config, &derived); !s) {
+  SceneDefaultsOptions derive_options;
+  derive_options.config_file = !config_file.empty();
+  if (Status s = deriveSceneDefaults(mesh, NBV_SOURCE_DIR, &config, &derived, derive_options); !s) {
     return fail("scene '" + config.scene.scene + "': " + s.message());
   }
   if (Status s = config.validate(); !s) return fail((config_file.empty() ? "" : config_file + ": ") + s.message());
@@ -375,19 +377,8 @@ int main(int argc, char** argv) {
   for (double v : {extent.min.x(), extent.min.y(), extent.min.z(), extent.max.x(), extent.max.y(), extent.max.z()}) {
     json.value("", v);
   }
-  json.endArray().beginObject("derived");  // the keys no config gave, as derived (scene_defaults.h)
-  for (const DerivedKey& k : derived.derived) {
-    if (k.boolean) {
-      json.value(k.key, k.values[0] != 0.0);
-    } else if (k.values.size() == 1) {
-      json.value(k.key, k.values[0]);
-    } else {
-      json.beginArray(k.key);
-      for (double v : k.values) json.value("", v);
-      json.endArray();
-    }
-  }
-  json.endObject();
+  json.endArray().value("reference_config", derived.reference_config);
+  derived.writeJson(&json);  // the keys no config gave, as derived (scene_defaults.h)
   json.beginObject("summary");
   for (Stat& s : stats) {
     double m, sd;

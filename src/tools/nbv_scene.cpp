@@ -77,7 +77,9 @@ int main(int argc, char** argv) {
   if (args.has("out")) std::printf("wrote %s\n", args.get("out", "").c_str());
 
   SceneDefaults derived;
-  s = deriveSceneDefaults(mesh, &config, &derived);
+  SceneDefaultsOptions derive_options;
+  derive_options.config_file = args.has("config");
+  s = deriveSceneDefaults(mesh, NBV_SOURCE_DIR, &config, &derived, derive_options);
   if (s) s = config.validate();
   if (!s) {
     if (args.has("derive-yaml")) return fail("scene '" + config.scene.scene + "': " + s.message());

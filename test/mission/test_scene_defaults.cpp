@@ -45,22 +45,27 @@ TriangleMesh alignedBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   return b.mesh();
 }
 
-// Derives into a default config with `given` keys set by a YAML text first.
+const std::string kPackage = NBV_SOURCE_DIR;
+
+// Derives into *c, after a config file of `yaml` when one is given.
 Status derive(const TriangleMesh& mesh, MissionConfig* c, SceneDefaults* d, const std::string& yaml = "",
-              const SceneDefaultsOptions& options = SceneDefaultsOptions()) {
+              SceneDefaultsOptions options = SceneDefaultsOptions()) {
   if (!yaml.empty()) {
     const std::string file = tempPath("given.yaml");
     std::ofstream(file) << yaml;
     if (Status s = loadMissionConfig(file, c); !s) return s;
+    options.config_file = true;
   }
-  return deriveSceneDefaults(mesh, c, d, options);
+  return deriveSceneDefaults(mesh, kPackage, c, d, options);
 }
 
-bool derived(const SceneDefaults& d, const std::string& key) {
+std::string value(const SceneDefaults& d, const std::string& key) {
   for (const DerivedKey& k : d.derived)
-    if (k.key == key) return true;
-  return false;
+    if (k.key == key) return k.value;
+  return "";
 }
+
+bool derived(const SceneDefaults& d, const std::string& key) { return !value(d, key).empty(); }
 
 TEST(SceneDefaults, DistanceToMeshIsThePointTriangleDistance) {
   TriangleMesh tri;
@@ -120,6 +125,15 @@ TEST(SceneDefaults, LargerScenesGetTable1sColumns) {
   EXPECT_DOUBLE_EQ(statue.tsdf.meshVoxelSize(), 0.075);  // config/statue.yaml's layer
   EXPECT_DOUBLE_EQ(statue.tsdf.mesh_truncation, 0.45);
   EXPECT_TRUE(statue.tsdf.mesh_weight_dropoff);
+  // No config file: config/statue.yaml's planner settings and UAV too, not its budget.
+  EXPECT_EQ(statue.explorer.min_visible, 3);
+  EXPECT_EQ(statue.explorer.head_lookahead, 1000);
+  EXPECT_DOUBLE_EQ(statue.explorer.head_vertical_scale, 2.0);
+  EXPECT_EQ(statue.path.iteration_budget, 3000);
+  EXPECT_DOUBLE_EQ(statue.surface.approach_range_fraction, 0.9);
+  EXPECT_DOUBLE_EQ(statue.tracker.mpc.v_max, 1.0);
+  EXPECT_DOUBLE_EQ(statue.max_flight_time, MissionConfig().max_flight_time);
+  EXPECT_EQ(d.reference_config, kPackage + "/config/statue.yaml");
   EXPECT_TRUE(statue.validate().ok()) << statue.validate().message();
   // The statue's 60 m height is fine: it is the tallest extent.
   MissionConfig plant;
@@ -131,6 +145,8 @@ TEST(SceneDefaults, LargerScenesGetTable1sColumns) {
   EXPECT_DOUBLE_EQ(plant.surface.delta_pose, 4.7);
   EXPECT_NEAR(plant.tsdf.meshVoxelSize(), 0.1, 1e-12);
   EXPECT_NEAR(plant.tsdf.mesh_truncation, 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(plant.camera.pitch_deg, 5.73);  // the power plant's RotorS mount
+  EXPECT_DOUBLE_EQ(plant.surface.camera.pitch_deg, 5.73);
   EXPECT_TRUE(plant.validate().ok()) << plant.validate().message();
   // The take-off pose: outside the plant's box, at a quarter of its 15 m.
   const AlignedBox box = d.scene_box;
@@ -185,7 +201,9 @@ TEST(SceneDefaults, GivenKeysAlwaysWin) {
   c = MissionConfig();
   ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/plant.yaml", &c).ok());
   const MissionConfig shipped = c;
-  ASSERT_TRUE(deriveSceneDefaults(procedural("plant"), &c, &d).ok());
+  SceneDefaultsOptions shipped_options;
+  shipped_options.config_file = true;
+  ASSERT_TRUE(deriveSceneDefaults(procedural("plant"), kPackage, &c, &d, shipped_options).ok());
   EXPECT_FALSE(d.derivedAny()) << d.summary();
   EXPECT_EQ(d.yaml(), "{}\n");
   EXPECT_EQ(c.start, shipped.start);
@@ -198,6 +216,31 @@ TEST(SceneDefaults, GivenKeysAlwaysWin) {
   EXPECT_NE(d.warnings[0].find("start_free_radius"), std::string::npos) << d.warnings[0];
 }
 
+// Over a config file only the keys that follow the scene's size are lent;
+// every shipped config of a built-in scene derives nothing, so it flies as
+// it did.
+TEST(SceneDefaults, AConfigFileKeepsTheCodesDefaultsBeyondTheSizeKeys) {
+  MissionConfig c;
+  SceneDefaults d;
+  ASSERT_TRUE(derive(procedural("statue"), &c, &d, "mission:\n  path_iterations: 500\n").ok());
+  EXPECT_DOUBLE_EQ(c.tsdf.voxel_size, 0.15);
+  EXPECT_DOUBLE_EQ(c.camera.max_range, 5.0);
+  EXPECT_DOUBLE_EQ(c.surface.approach_range_fraction, 0.9);
+  EXPECT_EQ(c.path.iteration_budget, 500);
+  EXPECT_EQ(c.explorer.head_lookahead, MissionConfig().explorer.head_lookahead);
+  EXPECT_FALSE(derived(d, "mission/min_visible"));
+  EXPECT_FALSE(derived(d, "tracker/v_max"));
+  EXPECT_TRUE(c.validate().ok()) << c.validate().message();
+  for (const char* name : {"box", "plant", "statue", "multistorey"}) {
+    MissionConfig shipped;
+    ASSERT_TRUE(loadMissionConfig(kPackage + "/config/" + name + ".yaml", &shipped).ok()) << name;
+    SceneDefaultsOptions from_file;
+    from_file.config_file = true;
+    ASSERT_TRUE(deriveSceneDefaults(procedural(name), kPackage, &shipped, &d, from_file).ok()) << name;
+    EXPECT_FALSE(d.derivedAny()) << name << ": " << d.summary();
+  }
+}
+
 // The derived keys as YAML for explore_sim.launch: nested sections, a key
 // once, loadable by the same reader as a config (and then all given).
 TEST(SceneDefaults, TheDerivedYamlLoadsBackAsTheSameConfig) {
@@ -207,7 +250,7 @@ TEST(SceneDefaults, TheDerivedYamlLoadsBackAsTheSameConfig) {
   ASSERT_TRUE(derive(statue, &c, &d, "nbv:\n  camera: {width: 320}\n").ok());
   const std::string yaml = d.yaml();
   EXPECT_NE(yaml.find("nbv:\n  voxel_size: 0.15\n"), std::string::npos) << yaml;
-  EXPECT_NE(yaml.find("  camera:\n    min_range: 1\n    max_range: 5\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("  camera:\n    min_range: 1.0\n    max_range: 5.0\n"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("  mesh_weight_dropoff: true\n"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("mission:\n  start: ["), std::string::npos) << yaml;
   const std::string file = tempPath("derived.yaml");
@@ -220,7 +263,9 @@ TEST(SceneDefaults, TheDerivedYamlLoadsBackAsTheSameConfig) {
   EXPECT_TRUE(back.tsdf.bounds.min.isApprox(c.tsdf.bounds.min, 1e-5));
   EXPECT_TRUE(back.start.isApprox(c.start, 1e-5));
   SceneDefaults again;
-  ASSERT_TRUE(deriveSceneDefaults(statue, &back, &again).ok());
+  SceneDefaultsOptions from_file;
+  from_file.config_file = true;
+  ASSERT_TRUE(deriveSceneDefaults(statue, kPackage, &back, &again, from_file).ok());
   EXPECT_EQ(again.derived.size(), 0u) << again.summary();
 }
 
@@ -307,7 +352,7 @@ TEST(SceneDefaults, ASceneTooBigForMemoryIsRefusedWithAVoxelSizeThatFits) {
   MissionConfig coarse;
   coarse.tsdf.voxel_size = fits;
   coarse.given_keys.insert("nbv/voxel_size");
-  ASSERT_TRUE(deriveSceneDefaults(hall, &coarse, &d, budget).ok());
+  ASSERT_TRUE(deriveSceneDefaults(hall, kPackage, &coarse, &d, budget).ok());
   EXPECT_LE(d.map_bytes, 0.5e9);
   EXPECT_NEAR(coarse.tsdf.meshVoxelSize(), fits / 3.0, 1e-12);  // the layer follows the given voxel
 }
@@ -328,14 +373,16 @@ void flyWithNoConfig(FileMission* m) {
   c.scene.scene = m->file;
   c.scene.transform = m->load;
   if (m->load.scale != 1.0) c.given_keys.insert("depth_sim/scene_scale");
-  // Repeatable legs (roadmap samples, not wall time), as config/*.yaml ship.
+  // Repeatable legs (roadmap samples, not wall time), as config/*.yaml ship;
+  // given, so that the small class's reference (box.yaml, none) keeps them.
   c.path.iteration_budget = 3000;
   c.path.time_budget = 30.0;
+  c.given_keys.insert({"mission/path_iterations", "mission/path_time_budget"});
   c.max_flight_time = 1800.0;
   TriangleMesh mesh;
   ASSERT_TRUE(loadScene(c.scene, &mesh).ok()) << m->file;
   SceneDefaults d;
-  ASSERT_TRUE(deriveSceneDefaults(mesh, &c, &d).ok());
+  ASSERT_TRUE(deriveSceneDefaults(mesh, kPackage, &c, &d).ok());
   ASSERT_TRUE(c.validate().ok()) << c.validate().message();
   std::unique_ptr<RaycastScene> scene;
   ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());

@@ -86,6 +86,8 @@ struct MissionConfig {
 // a missing file, bad YAML, a value of the wrong type or an unknown key of
 // the mission section.
 Status loadMissionConfig(const std::string& file, MissionConfig* config);
+// The same from YAML text; `name` stands for the file in errors.
+Status loadMissionConfigText(const std::string& text, const std::string& name, MissionConfig* config);
 
 // The configuration for a built-in scene name or mesh file: config/<scene>.yaml
 // of the package when it exists (`package_dir` is the package's source

@@ -6,18 +6,27 @@
 // A key is derived only when neither a config file nor a command-line option
 // gave it (MissionConfig::given_keys): a given key always wins.
 //
-// Size class, by the scene's footprint D = the larger of its x and y extents
-// (the paper's Table 1 where it applies):
-//   D <= 10 m  small       voxel 0.1 m, camera range [0.5, 8] m, delta_pose 3.0 m,
-//                          d_nu 2, d_nu_max 5, lambda_tc 0.3, lambda_ic 0.03, no
-//                          mesh layer (config/box.yaml)
-//   D <= 30 m  statue      Table 1 Statue: 0.15 m, [1, 5] m, 3.6 m, 2.5, 5, 0.17, 0.15;
-//                          mesh layer of half voxels (config/statue.yaml)
-//   D > 30 m   powerplant  Table 1 Powerplant: 0.3 m, [1.6, 8] m, 4.7 m, 2, 5, 0.3, 0.03;
-//                          mesh layer of third voxels (config/powerplant.yaml)
-// The mesh layer (statue and powerplant classes): mesh_voxel_size the
-// planning voxel / 2 or / 3, mesh_truncation 6 of its voxels, the weight
-// drop-off, mesh_min_weight 0, as the shipped configs.
+// Size class, by the scene's footprint D = the larger of its x and y extents,
+// and its reference config, a shipped one (the paper's Table 1 where it applies):
+//   D <= 10 m  small       config/box.yaml: 0.1 m voxels, range [0.5, 8] m,
+//                          delta_pose 3 m, no mesh layer
+//   D <= 30 m  statue      config/statue.yaml: Table 1's Statue column (0.15 m,
+//                          [1, 5] m, delta_pose 3.6 m, d_nu 2.5, lambdas 0.17 /
+//                          0.15), a 0.075 m mesh layer, level camera
+//   D > 30 m   powerplant  config/powerplant.yaml: Table 1's Powerplant column
+//                          (0.3 m, [1.6, 8] m, 4.7 m, 2.0, 0.3 / 0.03), a 0.1 m
+//                          mesh layer, the camera 5.73 deg down
+// The reference lends the keys that follow the scene's size when the user's
+// config leaves them out: voxel_size, camera/min_range and max_range,
+// delta_pose, d_nu, d_nu_max, lambda_tc, lambda_ic, approach_range_fraction
+// and the mesh layer (mesh_voxel_size, mesh_truncation, mesh_weight_dropoff,
+// whole or not at all, scaled by a given voxel size's ratio to the
+// reference's; mesh_min_weight). With no config file at all it lends every
+// key of its nbv, tracker and mission sections (the camera, the UAV's
+// limits, the planner's settings the shipped figures were flown with), but
+// the scene's own (bounds, start) and the budgets (max_flight_time,
+// max_path_length). A config file keeps the code's defaults for the rest,
+// so a shipped config flies as it did.
 //
 // Bounds: the scene's box grown by the camera's max range on every side but
 // the floor, which stays at the scene's lowest point (the ground).
@@ -45,47 +54,52 @@
 
 #include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/util/json_writer.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
 
-// One derived key: "nbv/bounds_min" -> {x, y, z}. `boolean` keys hold 0 or 1.
+// One derived key: "nbv/bounds_min" -> "[-10, -10, 0]" (its YAML text).
 struct DerivedKey {
   std::string key;
-  std::vector<double> values;
-  bool boolean = false;
-
-  // The value as YAML ("0.15", "[-9, -9, 0]", "true").
-  std::string yamlValue() const;
+  std::string value;
 };
 
 struct SceneDefaults {
   AlignedBox scene_box;     // the scene's triangles' box, metres
   double area_m2 = 0.0;
   std::string size_class;   // "small", "statue" or "powerplant"
-  std::vector<DerivedKey> derived;  // in the order they were derived
+  std::string reference_config;  // the class's config file
+  std::vector<DerivedKey> derived;  // lent by the reference, then bounds and start
   std::vector<std::string> warnings;
   double map_bytes = 0.0;   // estimateMapBytes of the final config
 
   bool derivedAny() const { return !derived.empty(); }
-  // "nbv/voxel_size 0.15, nbv/bounds_min [..], ..." or "nothing (every key given)".
+  // "nbv/voxel_size 0.15, ..., nbv/bounds_min [..], mission/start [..]; 20 more
+  // keys from .../statue.yaml" (the size keys, bounds and start in full), or
+  // "nothing (every key given)".
   std::string summary() const;
   // The derived keys as a YAML document (nested maps: nbv: camera: ...),
   // "{}\n" when none; rosparam-loadable.
   std::string yaml() const;
+  // "derived": {key: number, [numbers], bool or text} into an open object.
+  void writeJson(JsonWriter* json) const;
 };
 
 struct SceneDefaultsOptions {
+  // A config file was read: only the keys that follow the scene's size are lent.
+  bool config_file = false;
   // The memory the maps may take [bytes]; 0: half of this machine's RAM.
   double memory_budget = 0.0;
 };
 
 // Derives every key of *config that config->given_keys does not hold from
 // `mesh` (the scene as the mission flies it, after its up axis, scale and
-// crop), then checks the map's memory. The derived config still needs
+// crop) and the reference configs under package_dir/config, then checks the
+// map's memory. given_keys stays the user's. The derived config still needs
 // validate(). On error *config may be partly derived.
-Status deriveSceneDefaults(const TriangleMesh& mesh, MissionConfig* config, SceneDefaults* out,
-                           const SceneDefaultsOptions& options = SceneDefaultsOptions());
+Status deriveSceneDefaults(const TriangleMesh& mesh, const std::string& package_dir, MissionConfig* config,
+                           SceneDefaults* out, const SceneDefaultsOptions& options = SceneDefaultsOptions());
 
 // Bytes the mission's maps take at most over config.tsdf.bounds: the planning
 // TSDF with every block allocated (8 bytes a voxel, as free space is carved
