@@ -20,6 +20,22 @@ void toImageMsg(const DepthImage& depth, const std_msgs::Header& header, sensor_
   std::memcpy(msg->data.data(), depth.data.data(), msg->data.size());
 }
 
+void toImageMsgMillimetres(const DepthImage& depth, const std_msgs::Header& header, sensor_msgs::Image* msg) {
+  msg->header = header;
+  msg->width = static_cast<uint32_t>(depth.width);
+  msg->height = static_cast<uint32_t>(depth.height);
+  msg->encoding = sensor_msgs::image_encodings::TYPE_16UC1;
+  msg->is_bigendian = 0;
+  msg->step = msg->width * sizeof(uint16_t);
+  msg->data.resize(depth.data.size() * sizeof(uint16_t));
+  for (size_t i = 0; i < depth.data.size(); ++i) {
+    const float z = depth.data[i];
+    const double mm = std::isfinite(z) && z > 0.0f ? std::round(1000.0 * z) : 0.0;
+    const uint16_t value = mm >= 1.0 && mm <= 65535.0 ? static_cast<uint16_t>(mm) : 0;
+    std::memcpy(msg->data.data() + 2 * i, &value, 2);
+  }
+}
+
 Status fromImageMsg(const sensor_msgs::Image& msg, DepthImage* depth) {
   const bool is_float = msg.encoding == sensor_msgs::image_encodings::TYPE_32FC1;
   const bool is_mm = msg.encoding == sensor_msgs::image_encodings::TYPE_16UC1 ||

@@ -82,7 +82,8 @@ DepthSimServer::DepthSimServer(ros::NodeHandle nh, ros::NodeHandle priv, const C
       camera_(camera),
       config_(config),
       tf_listener_(tf_buffer_),
-      stats_(priv_, "stats", "depth_sim", config.stats_period) {
+      stats_(priv_, "stats", "depth_sim", config.stats_period),
+      pose_error_(config.pose_error) {
   status_ = prepareExportDirectory(config_.export_directory);
   if (status_) status_ = loadScene(config_.scene, &mesh_);
   if (status_) status_ = RaycastScene::create(mesh_, &scene_);
@@ -152,7 +153,16 @@ void DepthSimServer::onTimer(const ros::TimerEvent&) {
 
   const auto t0 = std::chrono::steady_clock::now();
   DepthImage depth;
-  renderer_->render(T_W_C, &depth, frame_index_++);
+  // TF carries the odometry's estimate, fused by the mapper as this frame's
+  // pose T_W_C = T_estimate J: the camera truly is at D T_estimate.
+  const uint64_t frame = frame_index_++;
+  Transform T_render = T_W_C;
+  if (pose_error_.enabled()) {
+    pose_error_.advance(T_W_C.translation(), frame);
+    const Transform jitter = T_W_C.inverse() * pose_error_.reportedPose(T_W_C, frame);
+    T_render = pose_error_.truePose(T_W_C * jitter.inverse());
+  }
+  renderer_->render(T_render, &depth, frame);
   stats_.recordMs(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
 
   std_msgs::Header header;
@@ -161,7 +171,11 @@ void DepthSimServer::onTimer(const ros::TimerEvent&) {
   sensor_msgs::CameraInfo info;
   toCameraInfoMsg(camera_, header, &info);
   sensor_msgs::Image image;
-  toImageMsg(depth, header, &image);
+  if (config_.encoding == "16UC1") {
+    toImageMsgMillimetres(depth, header, &image);
+  } else {
+    toImageMsg(depth, header, &image);
+  }
   image_pub_.publish(image);
   info_pub_.publish(info);
   if (config_.publish_points && points_pub_.getNumSubscribers() > 0) {

@@ -17,6 +17,8 @@ Status DepthSimConfig::validate() const {
   }
   if (!std::isfinite(stats_period) || stats_period <= 0.0) return Status::Error("stats_period expected > 0");
   if (export_directory.empty()) return Status::Error("export_directory expected a directory");
+  if (encoding != "32FC1" && encoding != "16UC1") return Status::Error("encoding expected '32FC1' or '16UC1'");
+  if (Status s = pose_error.validate(); !s) return s;
   return Status::Ok();
 }
 
@@ -64,6 +66,12 @@ Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, Dep
   reader.get("tf_timeout", &config->tf_timeout);
   reader.get("stats_period", &config->stats_period);
   reader.get("export_directory", &config->export_directory);
+  reader.get("encoding", &config->encoding);
+  reader.get("pose_drift_rate", &config->pose_error.drift_rate);
+  reader.get("pose_yaw_drift_deg", &config->pose_error.yaw_drift_deg);
+  reader.get("pose_jitter", &config->pose_error.jitter_position);
+  reader.get("pose_jitter_deg", &config->pose_error.jitter_angle_deg);
+  reader.get("pose_error_seed", &config->pose_error.seed);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (Status s = config->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());

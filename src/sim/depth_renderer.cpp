@@ -22,23 +22,10 @@ void intersect(int* valid, RTCScene scene, RTCIntersectContext* context, RTCRayH
   rtcIntersect16(valid, scene, context, packet);
 }
 
-uint64_t splitmix64(uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-double toUnit(uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
-
 }  // namespace
 
 float noisyDepth(float z, double k, uint64_t seed, uint64_t frame, uint64_t pixel) {
-  const uint64_t key = splitmix64(splitmix64(seed) ^ splitmix64(frame + 0x632BE59BD9B4E019ull) ^ pixel);
-  const double u1 = toUnit(splitmix64(key));
-  const double u2 = toUnit(splitmix64(key ^ 0xD1B54A32D192ED03ull));
-  const double gauss = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
-  return static_cast<float>(z + k * static_cast<double>(z) * z * gauss);
+  return static_cast<float>(z + k * static_cast<double>(z) * z * sensorGaussian(seed, frame, pixel, 0));
 }
 
 DepthRenderer::DepthRenderer(const RaycastScene& scene, const DepthCamera& camera, int threads, int packet_width)

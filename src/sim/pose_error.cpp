@@ -1,5 +1,6 @@
 #include "surface_nbv/sim/pose_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -60,15 +61,18 @@ void PoseErrorModel::advance(const Eigen::Vector3d& p_W, uint64_t frame) {
     D_.pretranslate(dt);
     yaw_ += dyaw;
   }
-  const double e = (D_ * p_W - p_W).norm();
-  ++stats_.frames;
-  sum_sq_position_ += e * e;
-  sum_sq_yaw_ += yaw_ * yaw_;
-  stats_.final_position = e;
-  stats_.max_position = std::max(stats_.max_position, e);
-  stats_.rms_position = std::sqrt(sum_sq_position_ / stats_.frames);
-  stats_.final_yaw_deg = std::abs(yaw_) * 180.0 / M_PI;
-  stats_.rms_yaw_deg = std::sqrt(sum_sq_yaw_ / stats_.frames) * 180.0 / M_PI;
+  stats_.add((D_ * p_W - p_W).norm(), yaw_);
+}
+
+void PoseErrorStats::add(double position, double yaw) {
+  ++frames;
+  sum_sq_position_ += position * position;
+  sum_sq_yaw_ += yaw * yaw;
+  final_position = position;
+  max_position = std::max(max_position, position);
+  rms_position = std::sqrt(sum_sq_position_ / frames);
+  final_yaw_deg = std::abs(yaw) * 180.0 / M_PI;
+  rms_yaw_deg = std::sqrt(sum_sq_yaw_ / frames) * 180.0 / M_PI;
 }
 
 Transform PoseErrorModel::truePose(const Transform& T_estimate) const {

@@ -60,6 +60,24 @@ TEST(DepthConversions, MillimetreImagesAndPaddedRows) {
   EXPECT_NEAR(d.at(1, 1), 65.535f, 1e-4);
 }
 
+// depth_sim's ~encoding 16UC1 (issue #40): millimetres, 0 for anything
+// without a depth, read back as the mapper reads it.
+TEST(DepthConversions, MillimetreOutputRoundsAndZeroesWhatHasNoDepth) {
+  const float inf = std::numeric_limits<float>::infinity();
+  DepthImage depth;
+  depth.resize(6, 1);
+  depth.data = {1.6004f, 4.2376f, NAN, inf, -inf, 70.0f};
+  sensor_msgs::Image msg;
+  toImageMsgMillimetres(depth, std_msgs::Header(), &msg);
+  EXPECT_EQ(msg.encoding, "16UC1");
+  EXPECT_EQ(msg.step, 12u);
+  DepthImage back;
+  ASSERT_TRUE(fromImageMsg(msg, &back).ok());
+  EXPECT_FLOAT_EQ(back.at(0, 0), 1.6f);
+  EXPECT_FLOAT_EQ(back.at(0, 1), 4.238f);
+  for (int col = 2; col < 6; ++col) EXPECT_TRUE(std::isnan(back.at(0, col))) << col;  // 0: invalid
+}
+
 TEST(DepthConversions, BigEndianFloat) {
   sensor_msgs::Image msg = floatImage({2.0f}, 1, 1);
   std::reverse(msg.data.begin(), msg.data.end());

@@ -22,6 +22,9 @@
 namespace surface_nbv {
 
 void toImageMsg(const DepthImage& depth, const std_msgs::Header& header, sensor_msgs::Image* msg);
+// 16UC1 in millimetres, as OpenNI-style drivers publish: depths rounded to a
+// millimetre, 0 for everything without one (NaN, +-Inf, beyond 65.535 m).
+void toImageMsgMillimetres(const DepthImage& depth, const std_msgs::Header& header, sensor_msgs::Image* msg);
 
 // Reads a 32FC1 or 16UC1 image; checks encoding, size, step and buffer length.
 // +-Inf are kept (REP 117); NaN, zero or negative depths become NaN.

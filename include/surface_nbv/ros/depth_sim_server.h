@@ -51,6 +51,7 @@ class DepthSimServer {
   StatsReporter stats_;
   ros::Time last_stamp_;
   uint64_t frame_index_ = 0;
+  PoseErrorModel pose_error_;
 };
 
 }  // namespace surface_nbv

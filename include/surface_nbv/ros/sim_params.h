@@ -7,6 +7,7 @@
 
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/pose_error.h"
 #include "surface_nbv/sim/scene_source.h"
 
 namespace surface_nbv {
@@ -25,6 +26,14 @@ struct DepthSimConfig {
   // The only place ~export_scene writes: created at start-up if missing; the
   // service takes a plain file name inside it.
   std::string export_directory = "/tmp/surface_nbv_scenes";
+  // "32FC1" (metres, REP 117) or "16UC1" (millimetres, 0 for no depth:
+  // +Inf no-returns are lost, as with a real 16-bit driver).
+  std::string encoding = "32FC1";
+  // The odometry's error (pose_error.h; ~pose_drift_rate,
+  // ~pose_yaw_drift_deg, ~pose_jitter, ~pose_jitter_deg, ~pose_error_seed):
+  // TF carries the estimate, which the mapper fuses at; the depth is
+  // rendered where the camera truly is. Off by default.
+  PoseErrorConfig pose_error;
 
   Status validate() const;
 };

@@ -53,6 +53,12 @@ struct PoseErrorStats {
   double max_position = 0.0;    // [m]
   double final_yaw_deg = 0.0;   // |yaw error| at the last frame
   double rms_yaw_deg = 0.0;
+
+  // One frame's position error [m] and yaw error [rad].
+  void add(double position, double yaw);
+
+ private:
+  double sum_sq_position_ = 0.0, sum_sq_yaw_ = 0.0;
 };
 
 class PoseErrorModel {
@@ -84,7 +90,6 @@ class PoseErrorModel {
   bool started_ = false;
   Eigen::Vector3d last_p_ = Eigen::Vector3d::Zero();
   PoseErrorStats stats_;
-  double sum_sq_position_ = 0.0, sum_sq_yaw_ = 0.0;
 };
 
 }  // namespace surface_nbv

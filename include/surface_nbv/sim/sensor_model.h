@@ -55,9 +55,12 @@ struct SensorModelConfig {
 // Axial sigma [m] at depth z of the camera's model (noise_k included).
 double axialSigma(const SensorModelConfig& sensor, double noise_k, double z);
 
-// A standard normal draw and a uniform draw in (0, 1), pure functions of
-// (seed, frame, pixel, stream). Stream 0 of the normal is noisyDepth()'s.
+// A standard normal draw (the inverse normal CDF of a uniform) and a uniform
+// draw in (0, 1), pure functions of (seed, frame, pixel, stream). Stream 0
+// of the normal is noisyDepth()'s.
 double sensorGaussian(uint64_t seed, uint64_t frame, uint64_t pixel, uint64_t stream);
+// The standard normal quantile of p in (0, 1) (relative error < 1.2e-9).
+double normalQuantile(double p);
 double sensorUniform(uint64_t seed, uint64_t frame, uint64_t pixel, uint64_t stream);
 
 // Whether the world point p_W lies in a dark / specular patch of `seed`.
