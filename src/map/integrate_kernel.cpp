@@ -40,7 +40,7 @@ size_t integrateBlockScalar(const BlockKernelFrame& f, const float p0[3], TsdfBl
           sdf = d - z;  // NaN for an ignored pixel: the comparison below skips it
           if (!(sdf >= -t) || (sdf < 0.0f && f.silhouette[pixel])) continue;
           sdf = std::min(sdf, t);
-          weight *= f.dropoff.share(sdf);
+          weight *= f.dropoff.share(sdf, z);
           if (!(weight > 0.0f)) continue;  // at -truncation nothing is left to add
         }
         updateVoxel(&vox[i], sdf, weight, f.max_weight);
@@ -72,6 +72,9 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
   // WeightDropoff::share: (trunc + sdf) scale below -start when on.
   const __m256 drop_below = _mm256_set1_ps(f.dropoff.on ? -f.dropoff.start : -INFINITY);
   const __m256 drop_scale = _mm256_set1_ps(f.dropoff.scale);
+  const bool noisy = f.dropoff.on && f.dropoff.noisy;
+  const __m256 drop_start = _mm256_set1_ps(f.dropoff.start), noise0 = _mm256_set1_ps(f.dropoff.noise0),
+               noise1 = _mm256_set1_ps(f.dropoff.noise1), noise2 = _mm256_set1_ps(f.dropoff.noise2);
   const __m256 inf = _mm256_set1_ps(INFINITY);
   const __m256 abs_mask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7fffffff));
   const __m256i width = _mm256_set1_epi32(f.width);
@@ -112,8 +115,16 @@ __attribute__((target("avx2"))) size_t integrateBlockAvx2(const BlockKernelFrame
         m_fin = _mm256_and_ps(m_fin, _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(keep))));
       }
       const __m256 sdf_fin = _mm256_min_ps(t, sdf_raw);
-      const __m256 share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(t, sdf_fin), drop_scale),
-                                            _mm256_cmp_ps(sdf_fin, drop_below, _CMP_LT_OQ));
+      __m256 share;
+      if (!noisy) {
+        share = _mm256_blendv_ps(one, _mm256_mul_ps(_mm256_add_ps(t, sdf_fin), drop_scale),
+                                 _mm256_cmp_ps(sdf_fin, drop_below, _CMP_LT_OQ));
+      } else {  // WeightDropoff::share with the sensor's noise, the scalar's operations in its order
+        const __m256 s = _mm256_max_ps(
+            drop_start, _mm256_add_ps(noise0, _mm256_mul_ps(_mm256_add_ps(noise1, _mm256_mul_ps(noise2, z)), z)));
+        share = _mm256_blendv_ps(one, _mm256_div_ps(_mm256_add_ps(t, sdf_fin), _mm256_sub_ps(t, s)),
+                                 _mm256_cmp_ps(sdf_fin, _mm256_sub_ps(zero, s), _CMP_LT_OQ));
+      }
       const __m256 weight_fin = _mm256_mul_ps(weight, share);
       m_fin = _mm256_and_ps(m_fin, _mm256_cmp_ps(weight_fin, zero, _CMP_GT_OQ));
       const __m256 update = _mm256_or_ps(m_inf, m_fin);
@@ -151,6 +162,13 @@ WeightDropoff::WeightDropoff(const TsdfConfig& c)
       trunc(static_cast<float>(c.truncationDistance())),
       scale(c.truncationDistance() > c.voxel_size ? static_cast<float>(1.0 / (c.truncationDistance() - c.voxel_size))
                                                   : 0.0f) {}
+
+void WeightDropoff::setNoise(const CameraConfig& camera) {
+  noise0 = static_cast<float>(2.0 * camera.sensor.noise_sigma0);
+  noise1 = static_cast<float>(2.0 * camera.sensor.noise_sigma1);
+  noise2 = static_cast<float>(2.0 * camera.noise_k);
+  noisy = noise0 > 0.0f || noise1 > 0.0f || noise2 > 0.0f;
+}
 
 KernelIsa bestKernelIsa() {
 #ifdef SURFACE_NBV_X86

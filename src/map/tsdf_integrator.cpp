@@ -151,6 +151,7 @@ Status TsdfIntegrator::integrateDepth(const DepthCamera& camera, const DepthImag
   frame.frame_weight = weight_scale_;
   frame.max_weight = cfg.max_weight;
   frame.dropoff = WeightDropoff(cfg);
+  frame.dropoff.setNoise(camera.config());
   frame.usable = index_.usableData();
   frame.silhouette = index_.silhouetteData();
   const KernelIsa isa = kernel_isa_;
@@ -239,7 +240,7 @@ Status TsdfIntegrator::integratePoints(const std::vector<Eigen::Vector3f>& point
     const Eigen::Vector3i l = TsdfMap::localOfVoxel(v);
     const double dist = std::max(kv.second.dist, 1e-3);
     const float sdf = static_cast<float>(kv.second.sdf_sum / kv.second.count);
-    const float weight = static_cast<float>(weight_scale_ / (dist * dist)) * dropoff.share(sdf);
+    const float weight = static_cast<float>(weight_scale_ / (dist * dist)) * dropoff.share(sdf, static_cast<float>(dist));
     if (!(weight > 0.0f)) continue;
     updateVoxel(&b->at(l.x(), l.y(), l.z()), sdf, weight, cfg.max_weight);
     b->change_stamp = stamp;

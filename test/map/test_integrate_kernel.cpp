@@ -89,6 +89,12 @@ TEST(IntegrateKernel, Avx2UpdatesTheSameVoxelsToTheSameBitsAsTheScalarLoop) {
     const bool dropoff = trial % 2 == 1;
     const float max_weight = trial % 3 == 0 ? 2.0f : 0.0f;
     RandomFrame f(&rng, dropoff, max_weight);
+    if (trial % 4 == 3) {  // the drop-off of a noisy sensor (issue #40)
+      CameraConfig noisy;
+      noisy.noise_k = 0.01;
+      noisy.sensor.noise_sigma0 = 0.02;
+      f.frame.dropoff.setNoise(noisy);
+    }
     const float p0[3] = {pos(rng), pos(rng), depth(rng)};
     auto scalar = std::make_unique<TsdfBlock>(), avx2 = std::make_unique<TsdfBlock>();
     randomVoxels(&rng, scalar.get());
@@ -197,4 +203,54 @@ TEST(IntegrateKernel, IntegratorBuildsTheSameMapWithEitherLoop) {
       ASSERT_EQ(std::memcmp(blk->voxels.data(), other->voxels.data(), sizeof(blk->voxels)), 0);
     }
   }
+}
+
+// Issue #40: with stereo noise (sigma 17.5 cm at 5 m) the drop-off behind
+// the surface starts at 2 sigma, not at one voxel, so the noise that put a
+// measurement behind the surface weighs as much as the noise that put one in
+// front: the fused zero crossing stays within 1.5 cm of the wall. With the
+// drop-off from one voxel it sat 2.9 cm inside.
+TEST(IntegrateKernel, NoisyDepthIsFusedWithoutPullingTheSurfaceIn) {
+  MeshBuilder b;
+  b.addAlignedBox(Eigen::Vector3d(5.0, -10.0, -10.0), Eigen::Vector3d(6.0, 10.0, 10.0));  // a wall at x = 5
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(b.take(), &scene).ok());
+  CameraConfig cc;
+  cc.width = 160;
+  cc.height = 120;
+  cc.noise_k = 0.007;
+  const DepthCamera camera(cc);
+  TsdfConfig c;
+  c.voxel_size = 0.1;
+  c.truncation = 0.6;
+  c.weight_dropoff = true;
+  c.bounds = AlignedBox(Eigen::Vector3d(-1, -3, -3), Eigen::Vector3d(9, 3, 3));
+  TsdfMap map(c);
+  TsdfIntegrator integrator(&map);
+  Transform T = Transform::Identity();
+  T.linear() = (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();  // looking along x
+  const DepthRenderer renderer(*scene, camera, 1);
+  DepthImage depth;
+  for (int k = 0; k < 60; ++k) {
+    renderer.render(T, &depth, k);
+    ASSERT_TRUE(integrator.integrateDepth(camera, depth, T).ok());
+  }
+  // The zero crossing of phi along x, in the middle of the view.
+  double sum = 0.0;
+  int n = 0;
+  for (int j = -5; j <= 5; ++j) {
+    for (int k = -5; k <= 5; ++k) {
+      for (int i = 50; i < 68; ++i) {  // x = 5 is voxel 60
+        const Eigen::Vector3i a(i, 30 + j, 30 + k), b2(i + 1, 30 + j, 30 + k);
+        const TsdfVoxel *va = map.voxel(a), *vb = map.voxel(b2);
+        if (!va || !vb || va->w <= 0.0f || vb->w <= 0.0f || !(va->phi > 0.0f && vb->phi <= 0.0f)) continue;
+        const double xa = map.voxelCenter(a).x(), xb = map.voxelCenter(b2).x();
+        sum += xa + (xb - xa) * va->phi / (va->phi - vb->phi);
+        ++n;
+        break;
+      }
+    }
+  }
+  ASSERT_GT(n, 100);
+  EXPECT_NEAR(sum / n, 5.0, 0.015);
 }

@@ -16,19 +16,33 @@
 
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/map/tsdf_map.h"
+#include "surface_nbv/sim/depth_camera.h"
 
 namespace surface_nbv {
 
 // The truncation band `trunc` and the share of an update's weight kept with
 // TsdfConfig::weight_dropoff: 1 down to sdf = -start (one voxel), then
-// falling linearly to 0 at -trunc.
+// falling linearly to 0 at -trunc. With a noisy sensor (setNoise: the
+// camera's sensor model, sensor_model.h) the full weight reaches down to the
+// larger of one voxel and 2 sigma(z) at the voxel's depth z: measurements
+// that noise put behind the surface are not down-weighted against those it
+// put in front, which would pull the surface into the object (issue #40).
 struct WeightDropoff {
   bool on = false;
   float start = 0.0f, trunc = 0.0f, scale = 0.0f;
+  bool noisy = false;
+  float noise0 = 0.0f, noise1 = 0.0f, noise2 = 0.0f;  // 2 sigma(z) = noise0 + (noise1 + noise2 z) z
 
   WeightDropoff() = default;
   explicit WeightDropoff(const TsdfConfig& c);
-  float share(float sdf) const { return on && sdf < -start ? (trunc + sdf) * scale : 1.0f; }
+  // Takes the camera's axial noise model; a perfect camera changes nothing.
+  void setNoise(const CameraConfig& camera);
+  float share(float sdf, float z) const {
+    if (!on) return 1.0f;
+    if (!noisy) return sdf < -start ? (trunc + sdf) * scale : 1.0f;
+    const float s = std::max(start, noise0 + (noise1 + noise2 * z) * z);
+    return sdf < -s ? (trunc + sdf) / (trunc - s) : 1.0f;  // sdf >= -trunc, so s < trunc there
+  }
 };
 
 // A voxel's update by one measurement: phi the weighted running average, w
