@@ -115,6 +115,7 @@ Status MissionConfig::validate() const {
   }
   if (threads < 1 || threads > 64) return Status::Error("mission/threads expected in [1, 64]");
   if (Status s = pose_error.validate(); !s) return Status::Error("mission/" + s.message());
+  if (Status s = manhattan_yaw.validate(); !s) return Status::Error("mission/" + s.message());
   return Status::Ok();
 }
 
@@ -228,6 +229,8 @@ Status loadMissionConfigNode(const YAML::Node& root, const std::string& file, Mi
   m.get("pose_jitter", &c->pose_error.jitter_position);
   m.get("pose_jitter_deg", &c->pose_error.jitter_angle_deg);
   m.get("pose_error_seed", &c->pose_error.seed);
+  m.get("manhattan_yaw", &c->manhattan_yaw.enabled);
+  m.get("manhattan_yaw_gain", &c->manhattan_yaw.gain);
   m.get("collision_radius", &c->path.collision_radius);
   m.get("epsilon", &c->surface.epsilon);
   m.get("parallel_distance", &c->surface.parallel_distance);

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/manhattan_yaw.h"
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/mission/oracle_gain.h"
 #include "surface_nbv/planning/explorer.h"
@@ -90,6 +91,20 @@ MissionResult MissionRunner::run() {
   PoseErrorConfig pose_config = c.pose_error;
   pose_config.seed = c.pose_error.seed + c.seed;
   PoseErrorModel pose_error(pose_config);
+  // Heading from the structure (c.manhattan_yaw): `correction` takes the
+  // odometry's estimate into the map's world; the planner and the map use
+  // it, the tracker flies the estimate.
+  ManhattanYaw manhattan(c.manhattan_yaw);
+  Transform correction = Transform::Identity();
+  const auto correctionYaw = [&] { return std::atan2(correction.linear()(1, 0), correction.linear()(0, 0)); };
+  const auto toMap = [&](const Eigen::Vector4d& q) {
+    const Eigen::Vector3d p = correction * Eigen::Vector3d(q.head<3>());
+    return Eigen::Vector4d(p.x(), p.y(), p.z(), q.w() + correctionYaw());
+  };
+  const auto toEstimate = [&](const Eigen::Vector4d& q) {
+    const Eigen::Vector3d p = correction.inverse() * Eigen::Vector3d(q.head<3>());
+    return Eigen::Vector4d(p.x(), p.y(), p.z(), q.w() - correctionYaw());
+  };
   SurfaceConfig surface = c.surface;
   surface.threads = c.threads;
   FrontierBuilder builder(surface);
@@ -159,15 +174,27 @@ MissionResult MissionRunner::run() {
     result.times.tracker += msSince(t_track);
     next_frame += frame_dt;
     const UavState& state = tracker.state();
-    const Eigen::Vector4d uav(state.p_W.x(), state.p_W.y(), state.p_W.z(), state.yaw);
+    Eigen::Vector4d uav(state.p_W.x(), state.p_W.y(), state.p_W.z(), state.yaw);
     // Sense. The UAV flies on its estimated pose; the camera is at the true
     // one and the frame is fused at the pose odometry reports (pose_error.h).
     const Transform T_W_C_estimate = levelBodyPose(state.p_W, state.yaw) * T_B_C;
     pose_error.advance(state.p_W, result.frames);
-    const Transform T_W_C = pose_error.reportedPose(T_W_C_estimate, result.frames);
+    Transform T_W_C = pose_error.reportedPose(T_W_C_estimate, result.frames);
     const auto t_render = Clock::now();
     renderer.render(pose_error.truePose(T_W_C_estimate), &depth, result.frames);
     result.times.render += msSince(t_render);
+    if (c.manhattan_yaw.enabled) {
+      T_W_C = correction * T_W_C;
+      const double dyaw = manhattan.update(camera, depth, T_W_C);
+      Transform turn = Transform::Identity();  // about the camera, so its position stays
+      turn.linear() = Eigen::AngleAxisd(dyaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      turn.translation() = T_W_C.translation() - turn.linear() * T_W_C.translation();
+      correction = turn * correction;
+      T_W_C = turn * T_W_C;
+      uav = toMap(uav);
+      result.yaw_corrections = manhattan.corrections();
+    }
+    if (pose_error.enabled()) result.fused_pose_error.addPose(T_W_C, pose_error.truePose(T_W_C_estimate));
     const auto t_integrate = Clock::now();
     // The mesh layer fuses each frame on a thread of its own while the
     // mission goes on (the same layer as fusing it here, see mesh_layer.h).
@@ -258,7 +285,11 @@ MissionResult MissionRunner::run() {
       break;
     }
     if (d.action == ExplorerAction::kFly) {
-      const Trajectory t = legTrajectory(d.path, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
+      std::vector<Eigen::Vector4d> leg = d.path;  // in the map's world: flown on the estimate
+      if (c.manhattan_yaw.enabled) {
+        for (Eigen::Vector4d& q : leg) q = toEstimate(q);
+      }
+      const Trajectory t = legTrajectory(leg, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
       if (Status s = tracker.setTrajectory(t); !s) tracker.hold();
     } else if (d.action == ExplorerAction::kHover) {
       tracker.hold();

@@ -365,7 +365,11 @@ void NbvPlannerServer::writeReport() const {
   json.value("decision_wall_s_max", walls.empty() ? 0.0 : walls.back());
   json.value("leg_end_wait_s", leg_end_wait_s_);
   json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
-  json.value("blacklisted", explorer_.blacklist().size()).endObject();
+  json.value("blacklisted", explorer_.blacklist().size());
+  // What explore_sim.launch derived from the scene for the keys its config left out (nbv_scene).
+  std::string scene_defaults;
+  if (ros::param::get("/scene_defaults", scene_defaults)) json.value("scene_defaults", scene_defaults);
+  json.endObject();
   const std::string path = config_.report_directory + "/mission_report.json";
   std::ofstream out(path);
   out << json.str();

@@ -75,6 +75,13 @@ void PoseErrorStats::add(double position, double yaw) {
   rms_yaw_deg = std::sqrt(sum_sq_yaw_ / frames) * 180.0 / M_PI;
 }
 
+void PoseErrorStats::addPose(const Transform& T, const Transform& T_true) {
+  // The yaw between the optical axes about the world's z.
+  const Eigen::Vector3d a = T.linear().col(2), b = T_true.linear().col(2);
+  add((T.translation() - T_true.translation()).norm(),
+      std::atan2(b.x() * a.y() - b.y() * a.x(), b.x() * a.x() + b.y() * a.y()));
+}
+
 Transform PoseErrorModel::truePose(const Transform& T_estimate) const {
   if (!enabled()) return T_estimate;
   return D_ * T_estimate;

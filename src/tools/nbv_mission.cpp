@@ -77,7 +77,8 @@ struct TrialRow {
   double path_length = 0, flight_min = 0, coverage = 0, mean = 0, std_dev = 0, rmse = 0, wall_s = 0;
   double plan_ms_max = 0, frontier_ms_max = 0;
   MissionStageTimes times;
-  PoseErrorStats pose_error;
+  PoseErrorStats pose_error, fused_pose_error;
+  size_t yaw_corrections = 0;
   FlightProfile profile;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
 };
@@ -313,6 +314,8 @@ int main(int argc, char** argv) {
     row.wall_s = r.wall_time;
     row.times = r.times;
     row.pose_error = r.pose_error;
+    row.fused_pose_error = r.fused_pose_error;
+    row.yaw_corrections = r.yaw_corrections;
     row.profile = profileFlight(r.flown, r.flown_t, trial_config.speed);
     row.frames = r.frames;
     row.updates = r.frontier_updates;
@@ -332,9 +335,11 @@ int main(int argc, char** argv) {
                 r.flight_time / std::max(row.wall_s, 1e-9), r.end_reason.c_str());
     std::printf("  flight: %s\n", profileLine(row.profile).c_str());
     if (config.pose_error.enabled()) {
-      std::printf("  pose error: %.3f m at the end (RMS %.3f m, max %.3f m), yaw %.2f deg (RMS %.2f deg)\n",
-                  r.pose_error.final_position, r.pose_error.rms_position, r.pose_error.max_position,
-                  r.pose_error.final_yaw_deg, r.pose_error.rms_yaw_deg);
+      for (const auto& [name, e] : {std::make_pair("odometry", r.pose_error), std::make_pair("fused", r.fused_pose_error)}) {
+        std::printf("  %s pose error: %.3f m at the end (RMS %.3f m, max %.3f m), yaw %.2f deg (RMS %.2f deg)\n", name,
+                    e.final_position, e.rms_position, e.max_position, e.final_yaw_deg, e.rms_yaw_deg);
+      }
+      if (config.manhattan_yaw.enabled) std::printf("  heading corrected from the walls in %zu frames\n", r.yaw_corrections);
     }
     std::fflush(stdout);
     if (!args.has("no-plots")) {
@@ -394,11 +399,14 @@ int main(int argc, char** argv) {
     json.value("full_recomputes", r.full).value("local_updates", r.local).value("legs", r.legs);
     json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
     json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
-    if (config.pose_error.enabled()) {  // the estimate against the truth (pose_error.h)
-      const PoseErrorStats& e = r.pose_error;
-      json.beginObject("pose_error").value("final_m", e.final_position).value("rms_m", e.rms_position);
-      json.value("max_m", e.max_position).value("final_yaw_deg", e.final_yaw_deg).value("rms_yaw_deg", e.rms_yaw_deg);
-      json.endObject();
+    if (config.pose_error.enabled()) {  // the estimate and the fused poses against the truth (pose_error.h)
+      for (const auto& [name, e] : {std::make_pair("pose_error", r.pose_error),
+                                    std::make_pair("fused_pose_error", r.fused_pose_error)}) {
+        json.beginObject(name).value("final_m", e.final_position).value("rms_m", e.rms_position);
+        json.value("max_m", e.max_position).value("final_yaw_deg", e.final_yaw_deg);
+        json.value("rms_yaw_deg", e.rms_yaw_deg).endObject();
+      }
+      json.value("yaw_corrections", r.yaw_corrections);
     }
     json.beginObject("stage_ms").value("render", r.times.render).value("integrate", r.times.integrate);
     json.value("collision", r.times.collision).value("frontier", r.times.frontier).value("graph", r.times.graph);

@@ -7,10 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/map/mesh_extractor.h"
@@ -18,6 +22,7 @@
 #include "surface_nbv/sim/mesh_builder.h"
 #include "surface_nbv/sim/procedural_scenes.h"
 #include "surface_nbv/sim/raycast_scene.h"
+#include "surface_nbv/util/cli_args.h"
 
 using namespace surface_nbv;
 
@@ -355,6 +360,90 @@ TEST(SceneDefaults, ASceneTooBigForMemoryIsRefusedWithAVoxelSizeThatFits) {
   ASSERT_TRUE(deriveSceneDefaults(hall, kPackage, &coarse, &d, budget).ok());
   EXPECT_LE(d.map_bytes, 0.5e9);
   EXPECT_NEAR(coarse.tsdf.meshVoxelSize(), fits / 3.0, 1e-12);  // the layer follows the given voxel
+}
+
+// The command line's scene options count as given.
+TEST(SceneDefaults, CommandLineSceneOptionsAreGivenKeys) {
+  const char* argv[] = {"tool", "--scene", "x.obj", "--up-axis", "z", "--scale", "0.001"};
+  CliArgs args(sceneOptionNames(), {});
+  ASSERT_TRUE(args.parse(7, const_cast<char**>(argv)).ok());
+  MissionConfig c;
+  ASSERT_TRUE(applySceneOptions(args, &c).ok());
+  EXPECT_DOUBLE_EQ(c.scene.transform.scale, 0.001);
+  EXPECT_EQ(c.given_keys.count("depth_sim/scene_up_axis"), 1u);
+  EXPECT_EQ(c.given_keys.count("depth_sim/scene_scale"), 1u);
+  EXPECT_EQ(c.given_keys.count("depth_sim/crop_min"), 0u);
+}
+
+// The tools: nbv_scene --derive-yaml writes what explore_sim.launch loads,
+// nbv_mission prints what it derived first and reports it, and a refused
+// scene stops both with one line. Built beside this test (devel/lib/surface_nbv).
+struct ToolRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string readText(const std::string& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+ToolRun runTool(const std::string& tool, const std::string& arguments) {
+  const std::string exe = (std::filesystem::read_symlink("/proc/self/exe").parent_path() / tool).string();
+  const std::string out = tempPath(tool + ".out"), err = tempPath(tool + ".err");
+  const int status = std::system((exe + " " + arguments + " > " + out + " 2> " + err).c_str());
+  ToolRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = readText(out);
+  r.err = readText(err);
+  return r;
+}
+
+TEST(SceneDefaultsTools, NbvSceneAndNbvMissionSayWhatTheyDerivedAndRefuseInOneLine) {
+  TriangleMesh box = procedural("box");
+  box.scaleAndOffset(1.0, Eigen::Vector3d(20.0, 0.0, -3.0));
+  const std::string file = tempPath("tool_box.ply");
+  ASSERT_TRUE(saveMesh(box, file).ok());
+  const std::string yaml = tempPath("tool_derived/derived_params.yaml");
+  std::filesystem::remove_all(tempPath("tool_derived"));
+  ToolRun r = runTool("nbv_scene", "--scene " + file + " --derive-yaml " + yaml);
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("derived (small class): nbv/voxel_size 0.1"), std::string::npos) << r.out;
+  MissionConfig back;
+  ASSERT_TRUE(loadMissionConfig(yaml, &back).ok()) << readText(yaml);
+  EXPECT_TRUE(back.tsdf.bounds.min.isApprox(Eigen::Vector3d(10, -10, -3), 1e-6)) << readText(yaml);
+  EXPECT_NEAR(back.start.x(), 14.5, 1e-6);
+
+  // A short flight (30 s): the first lines and report.json say what was derived.
+  const std::string out = tempPath("tool_mission");
+  r = runTool("nbv_mission", "--scene " + file + " --max-flight-time 30 --no-plots --out " + out);
+  EXPECT_EQ(r.code, 1) << r.out << r.err;  // stopped by the flight limit, not completed
+  const size_t first = r.out.find('\n'), second = r.out.find('\n', first + 1);
+  ASSERT_NE(second, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(0, second).find("derived from the scene (small class, 4.0 m footprint): nbv/voxel_size 0.1"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("mission/start [14.5, 0, -1, 0]"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("outside the map's bounds"), std::string::npos) << r.err;
+  const std::string json = readText(out + "/report.json");
+  EXPECT_NE(json.find("\"size_class\": \"small\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"nbv/voxel_size\": 0.1,"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"mission/start\": ["), std::string::npos) << json;
+
+  // A given --voxel-size wins; a lying mesh is refused in one line, in both tools.
+  r = runTool("nbv_scene", "--scene " + file + " --voxel-size 0.2");
+  EXPECT_EQ(r.out.find("nbv/voxel_size"), std::string::npos) << r.out;
+  const std::string lying = tempPath("tool_lying.stl");
+  ASSERT_TRUE(saveMesh(alignedBox({-3, 0, 0}, {3, 30, 6}), lying).ok());
+  r = runTool("nbv_mission", "--scene " + lying + " --no-plots --out " + out);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("lying on its side"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = runTool("nbv_scene", "--scene " + lying + " --derive-yaml " + yaml);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--up-axis y"), std::string::npos) << r.err;
+  r = runTool("nbv_mission", "--scene " + lying + " --up-axis z --max-flight-time 1 --no-plots --out " + out);
+  EXPECT_EQ(r.err.find("lying on its side"), std::string::npos) << r.err;
 }
 
 // --- Whole missions with no config on scene files ---------------------------

@@ -17,6 +17,7 @@
 
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/map/manhattan_yaw.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/path_planner.h"
@@ -77,6 +78,10 @@ struct MissionConfig {
   // UAV flies and maps on its estimate, the camera renders at the truth.
   // Off by default. Its seed is pose_error_seed + seed.
   PoseErrorConfig pose_error;
+  // The heading from the walls' directions (manhattan_yaw.h;
+  // mission/manhattan_yaw, manhattan_yaw_gain): for structures of walls 90
+  // degrees apart. Off by default.
+  ManhattanYawConfig manhattan_yaw;
 
   // Names the first bad key.
   Status validate() const;

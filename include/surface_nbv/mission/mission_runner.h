@@ -63,6 +63,8 @@ struct MissionResult {
   MissionStageTimes times;
   double max_frontier_ms = 0.0, max_plan_ms = 0.0;  // slowest single update / Explorer decision
   PoseErrorStats pose_error;            // the estimate against the truth (MissionConfig::pose_error)
+  PoseErrorStats fused_pose_error;      // the poses frames were fused at against the truth
+  size_t yaw_corrections = 0;           // frames whose walls corrected the heading (MissionConfig::manhattan_yaw)
 };
 
 class MissionRunner {

@@ -56,6 +56,8 @@ struct PoseErrorStats {
 
   // One frame's position error [m] and yaw error [rad].
   void add(double position, double yaw);
+  // Adds the error of pose `T` against the true pose `T_true`.
+  void addPose(const Transform& T, const Transform& T_true);
 
  private:
   double sum_sq_position_ = 0.0, sum_sq_yaw_ = 0.0;
