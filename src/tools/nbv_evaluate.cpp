@@ -1,5 +1,5 @@
 // nbv_evaluate: compares a reconstructed mesh with the ground truth
-// (METHOD.md, "Evaluation protocol"): surface coverage within
+// (docs/method.md, "Evaluation protocol"): surface coverage within
 // e_max = rho_v sqrt(3) / 2 of the ground truth a sensor can see, and the
 // M3C2-like signed error along the ground-truth normal. Writes report.json,
 // report.md and PLY clouds to --out; --plots adds PNG plots (python3-matplotlib).

@@ -1,4 +1,4 @@
-// Coverage of the ground truth (METHOD.md, "Evaluation protocol"): a visible
+// Coverage of the ground truth (docs/method.md, "Evaluation protocol"): a visible
 // ground-truth sample is covered when a reconstructed sample lies within
 // e_max = rho_v sqrt(3) / 2 of it; coverage = covered / visible.
 #pragma once

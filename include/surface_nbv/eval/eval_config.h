@@ -1,4 +1,4 @@
-// Parameters of the evaluation against ground truth (METHOD.md, "Evaluation
+// Parameters of the evaluation against ground truth (docs/method.md, "Evaluation
 // protocol"). Lengths in metres, angles in degrees. A zero length marked
 // "0 = ..." selects a default tied to the voxel size; the accessors resolve it.
 #pragma once

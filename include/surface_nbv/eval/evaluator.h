@@ -1,5 +1,5 @@
 // Evaluates a reconstructed mesh against a ground-truth mesh, both in the
-// world frame (METHOD.md, "Evaluation protocol"): samples both surfaces,
+// world frame (docs/method.md, "Evaluation protocol"): samples both surfaces,
 // prunes the ground truth to what a sensor in reachable free space can see,
 // measures coverage within e_max and the M3C2-like signed error of the
 // covered samples. ROS-free, for nbv_evaluate and the mission runner alike.

@@ -1,5 +1,5 @@
 // Keeps the ground-truth samples some collision-free sensor position can see
-// (METHOD.md, "Evaluation protocol"). From each sample, lines of sight are
+// (docs/method.md, "Evaluation protocol"). From each sample, lines of sight are
 // cast with Embree along up to `visibility_rays` directions per side of its
 // triangle, within max_incidence_deg of the normal; the sample is visible when
 // one reaches a reachable FreeSpaceGrid cell at a distance in [min_range,

@@ -1,4 +1,4 @@
-// Marching Cubes over a TsdfMap (METHOD.md, "TSDF map": the surface is the
+// Marching Cubes over a TsdfMap (docs/method.md, "TSDF map": the surface is the
 // zero level set of phi). The samples are voxel centres; the cube whose lowest
 // corner is voxel v belongs to v's block and is meshed only when all 8 of its
 // corners are known (w >= w_th; with TsdfConfig::mesh_min_weight >= 0, when

@@ -1,4 +1,4 @@
-// Parameters of the TSDF map (METHOD.md, "TSDF map"). Lengths in metres.
+// Parameters of the TSDF map (docs/method.md, "TSDF map"). Lengths in metres.
 #pragma once
 
 #include <cstddef>

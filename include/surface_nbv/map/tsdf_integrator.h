@@ -1,4 +1,4 @@
-// Fuses depth into a TsdfMap (METHOD.md, "TSDF map"). Depth images are
+// Fuses depth into a TsdfMap (docs/method.md, "TSDF map"). Depth images are
 // integrated projectively: every voxel of every block that can be in the
 // camera frustum (up to max range plus truncation, and not entirely behind
 // the measured surfaces) is projected into the image; with the measured depth

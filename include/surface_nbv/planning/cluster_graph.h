@@ -1,4 +1,4 @@
-// The cluster graph G = (U, E, a_uv) of METHOD.md "Cluster graph and tour"
+// The cluster graph G = (U, E, a_uv) of docs/method.md "Cluster graph and tour"
 // (eq. 4, 5) and the tour over it. ROS-free.
 //
 // Nodes: node 0 is the UAV's current configuration, node u > 0 is cluster u - 1

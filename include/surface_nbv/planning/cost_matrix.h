@@ -39,7 +39,7 @@ class CostMatrix {
   std::vector<double> data_;
 };
 
-// The tour cost of moving to cluster v (METHOD.md eq. 5): cost = -log f_uv
+// The tour cost of moving to cluster v (docs/method.md eq. 5): cost = -log f_uv
 //   = lambda_tc * d_kl + lambda_ic * d_lm - log g(v), made non-negative by
 // adding log(g_max), g_max >= every g(v) > 0. The added constant is the same
 // for every arc into v, so it shifts every tour (each node entered once) and

@@ -1,4 +1,4 @@
-// The replanning loop of the paper's Fig. 1 (METHOD.md, "Replanning"), ROS-free:
+// The replanning loop of the paper's Fig. 1 (docs/method.md, "Replanning"), ROS-free:
 // given each new Frontier and the UAV's configuration, it keeps a tour of
 // viewpoints and hands out the next leg to fly.
 //

@@ -1,5 +1,5 @@
 // Collision-free paths for the UAV between two poses (x, y, z, yaw) with
-// OMPL's LazyPRM* over the map bounds (METHOD.md, "Cluster graph and tour",
+// OMPL's LazyPRM* over the map bounds (docs/method.md, "Cluster graph and tour",
 // "Replanning").
 //
 // Configuration space: R^3 positions only; the yaw is interpolated linearly

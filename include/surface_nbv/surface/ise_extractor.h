@@ -1,4 +1,4 @@
-// The set C of incomplete surface elements (METHOD.md eq. 1) of a TsdfMap,
+// The set C of incomplete surface elements (docs/method.md eq. 1) of a TsdfMap,
 // kept incrementally: an update re-reads only the blocks stamped since the
 // last one (or that vanished) and re-examines them and their 26 neighbour
 // blocks. A voxel is an ISE iff it is known empty, has an unknown 6-neighbour

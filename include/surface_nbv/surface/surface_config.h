@@ -1,4 +1,4 @@
-// Parameters of the incomplete-surface stage (METHOD.md, "ISE", "Viewpoint
+// Parameters of the incomplete-surface stage (docs/method.md, "ISE", "Viewpoint
 // for an ISE", "Clusters"): viewpoint distance and fall-backs, merging,
 // visibility and clustering. Lengths in metres, angles in degrees. W_th and
 // the bounds come from the TsdfMap, the collision model from the CollisionMap.

@@ -1,4 +1,4 @@
-// Clusters of viewpoints (METHOD.md, "Clusters") and their gains (eq. 3).
+// Clusters of viewpoints (docs/method.md, "Clusters") and their gains (eq. 3).
 // q_i and q_j are neighbours when the straight segment between them is
 // shorter than d_nu and collision-free with the configured radius (that
 // segment stands for the roadmap path; when it is blocked they are not

@@ -1,4 +1,4 @@
-// Merges viewpoint poses that are nearly the same (METHOD.md, "Viewpoint for
+// Merges viewpoint poses that are nearly the same (docs/method.md, "Viewpoint for
 // an ISE"). In input order, a pose joins the first group whose seed (first
 // pose) is closer than epsilon, or closer than parallel_distance with view
 // directions whose dot product is at least parallel_cos; otherwise it seeds
