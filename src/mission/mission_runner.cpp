@@ -163,7 +163,8 @@ MissionResult MissionRunner::run() {
   Eigen::Vector3d last_p = tracker.state().p_W;
   bool spinning = c.start_spin > 0.0;
   const auto pathLeft = [&] { return !(c.max_path_length > 0.0) || result.path_length < c.max_path_length; };
-  while (tracker.time() < c.max_flight_time && pathLeft()) {
+  const auto timeLeft = [&] { return !(c.max_flight_time > 0.0) || tracker.time() < c.max_flight_time; };
+  while (timeLeft() && pathLeft()) {
     // Fly to the next frame time.
     const auto t_track = Clock::now();
     while (tracker.time() + 1e-9 < next_frame) {

@@ -416,4 +416,13 @@ Status deriveSceneDefaults(const TriangleMesh& mesh, const std::string& package_
   return checkMemory(c, out->area_m2, budget, out);
 }
 
+Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir, MissionConfig* config,
+                             std::string* config_file) {
+  *config_file = args.get("config", defaultConfigFile(package_dir, args.get("scene", "plant")));
+  if (!config_file->empty()) {
+    if (Status s = loadMissionConfig(*config_file, config); !s) return s;
+  }
+  return applySceneOptions(args, config);
+}
+
 }  // namespace surface_nbv

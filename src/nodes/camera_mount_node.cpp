@@ -7,6 +7,7 @@
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/ros/sim_params.h"
 #include "surface_nbv/sim/scripted_flight.h"
@@ -28,7 +29,7 @@ int main(int argc, char** argv) {
   }
   surface_nbv::CameraConfig camera;
   surface_nbv::ParamReader shared{ros::NodeHandle(shared_namespace)};
-  surface_nbv::readCameraConfig(&shared, &camera);
+  surface_nbv::readCameraKeys(shared, &camera);
   shared.checkUnknown("camera");
   surface_nbv::Status s = shared.status();
   if (s) s = camera.validate();

@@ -28,10 +28,6 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   reader.get("fallback_rotations_deg", &s.fallback_rotations_deg);
   reader.get("fallback_distance_fractions", &s.fallback_distance_fractions);
   reader.get("fov_margin_deg", &s.fov_margin_deg);
-  reader.get("collision_radius", &s.collision_radius);
-  reader.get("epsilon", &s.epsilon);
-  reader.get("parallel_distance", &s.parallel_distance);
-  reader.get("parallel_cos", &s.parallel_cos);
   reader.get("unknown_blocks_visibility", &s.unknown_blocks_visibility);
   reader.get("d_nu_step", &s.d_nu_step);
   reader.get("threads", &s.threads);
@@ -39,10 +35,19 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   reader.get("world_frame", &c->world_frame);
   reader.get("mission_namespace", &c->mission_namespace);
+  // The mission section's keys of this stage (nbv_mission's), then the node's own.
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
   mission.get("frontier_period", &c->frontier_period);
+  mission.get("collision_radius", &s.collision_radius);
+  mission.get("epsilon", &s.epsilon);
+  mission.get("parallel_distance", &s.parallel_distance);
+  mission.get("parallel_cos", &s.parallel_cos);
   if (Status st = mission.status(); !st) return st;
   reader.get("frontier_period", &c->frontier_period);  // the node's own value wins
+  reader.get("collision_radius", &s.collision_radius);
+  reader.get("epsilon", &s.epsilon);
+  reader.get("parallel_distance", &s.parallel_distance);
+  reader.get("parallel_cos", &s.parallel_cos);
   reader.get("rate", &c->rate);
   readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
@@ -50,12 +55,9 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   if (Status st = reader.status(); !st) return st;
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
-  readSharedMapConfig(&shared, &c->map);
-  shared.get("delta_pose", &s.delta_pose);
-  shared.get("d_nu", &s.d_nu);
-  shared.get("d_nu_max", &s.d_nu_max);
-  shared.get("approach_range_fraction", &s.approach_range_fraction);
-  readCameraConfig(&shared, &s.camera);
+  readTsdfKeys(shared, &c->map);
+  readSurfaceKeys(shared, &s);
+  readCameraKeys(shared, &s.camera);
   shared.checkUnknown("camera");
   if (Status st = shared.status(); !st) return st;
   if (Status st = s.camera.validate(); !st) return Status::Error(c->shared_namespace + "/" + st.message());

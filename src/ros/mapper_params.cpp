@@ -29,32 +29,16 @@ Status MapperConfig::validate() const {
   return Status::Ok();
 }
 
-void readSharedMapConfig(ParamReader* shared, TsdfConfig* map) {
-  shared->get("voxel_size", &map->voxel_size);
-  double w_th = map->w_th;
-  shared->get("w_th", &w_th);
-  map->w_th = static_cast<float>(w_th);
-  double mesh_min_weight = map->mesh_min_weight;
-  shared->get("mesh_min_weight", &mesh_min_weight);
-  map->mesh_min_weight = static_cast<float>(mesh_min_weight);
-  shared->get("truncation", &map->truncation);
-  shared->get("mesh_truncation", &map->mesh_truncation);
-  shared->get("mesh_voxel_size", &map->mesh_voxel_size);
-  shared->get("weight_dropoff", &map->weight_dropoff);
-  shared->get("mesh_weight_dropoff", &map->mesh_weight_dropoff);
-  shared->get("bounds_min", &map->bounds.min);
-  shared->get("bounds_max", &map->bounds.max);
-}
-
 Status loadSharedMapConfig(const std::string& ns, TsdfConfig* map) {
   ParamReader shared{ros::NodeHandle(ns)};
-  readSharedMapConfig(&shared, map);
+  readTsdfKeys(shared, map);
   return shared.status();
 }
 
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);
+  reader.get("mission_namespace", &c->mission_namespace);
   // ~truncation overrides the shared nbv/truncation (read below).
   double truncation = std::numeric_limits<double>::quiet_NaN();
   reader.get("truncation", &truncation);
@@ -64,8 +48,13 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   int max_blocks = static_cast<int>(c->tsdf.max_blocks);
   reader.get("max_blocks", &max_blocks);
   c->tsdf.max_blocks = max_blocks > 0 ? static_cast<size_t>(max_blocks) : 0;
-  std::string policy = toString(c->tsdf.invalid_pixels);
-  reader.get("invalid_pixels", &policy);
+  // The mission section's invalid_pixels and start_free_radius (nbv_mission's
+  // keys), unless the node's own are given.
+  ParamReader mission((ros::NodeHandle(c->mission_namespace)));
+  readInvalidPixelsKey(mission, "invalid_pixels", &c->tsdf);
+  mission.get("start_free_radius", &c->start_free_radius);
+  if (Status s = mission.status(); !s) return s;
+  readInvalidPixelsKey(reader, "invalid_pixels", &c->tsdf);
   reader.get("threads", &c->tsdf.threads);
   reader.get("world_frame", &c->world_frame);
   reader.get("input", &c->input);
@@ -76,21 +65,16 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   reader.get("max_pending_frames", &c->max_pending_frames);
   reader.get("input_queue", &c->input_queue);
   reader.get("tf_wait", &c->tf_wait);
-  // Shared with nbv_mission: mission/start_free_radius, unless ~start_free_radius is given.
-  ros::param::get("/mission/start_free_radius", c->start_free_radius);
   reader.get("start_free_radius", &c->start_free_radius);
   reader.get("autosave_period", &c->autosave_period);
   reader.get("resume", &c->resume);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
-  if (!parseInvalidPixelPolicy(policy, &c->tsdf.invalid_pixels)) {
-    return Status::Error(priv.resolveName("invalid_pixels") + " expected 'ignore', 'clear' or 'clear_inf', got '" + policy + "'");
-  }
 
   ParamReader shared(ros::NodeHandle(c->shared_namespace));
-  readSharedMapConfig(&shared, &c->tsdf);
+  readTsdfKeys(shared, &c->tsdf);
   if (priv.hasParam("truncation")) c->tsdf.truncation = truncation;
-  readCameraConfig(&shared, &c->camera);
+  readCameraKeys(shared, &c->camera);
   shared.checkUnknown("camera");
   if (Status s = shared.status(); !s) return s;
   if (Status s = c->camera.validate(); !s) return Status::Error(c->shared_namespace + "/" + s.message());

@@ -1,5 +1,7 @@
 #include "surface_nbv/ros/mpc_tracker_server.h"
 
+#include "surface_nbv/config/config_keys.h"
+
 #include <chrono>
 #include <cmath>
 
@@ -32,16 +34,10 @@ Status loadTrackerParams(const ros::NodeHandle& priv, TrackerNodeConfig* c) {
   std::string tracker_namespace = kTrackerNamespace;
   r.get("tracker_namespace", &tracker_namespace);
   ParamReader shared((ros::NodeHandle(tracker_namespace)));
-  for (ParamReader* reader : {&shared, &r}) {
-    reader->get("drag", &c->sim.model.drag);
-    reader->get("v_max", &c->sim.model.v_max);
-    reader->get("a_max", &c->sim.model.a_max);
-    reader->get("yaw_rate_max", &c->sim.model.yaw_rate_max);
-    reader->get("jerk_max", &c->sim.mpc.jerk_max);
-  }
+  readTrackerKeys(shared, &c->sim);  // the config's tracker section (nbv_mission's), then ~
+  readTrackerKeys(r, &c->sim);
   shared.checkUnknown();
   if (Status s = shared.status(); !s) return s;
-  c->sim.mpcUsesModelLimits();
   r.get("horizon", &c->sim.mpc.horizon);
   r.get("mpc_dt", &c->sim.mpc.dt);
   r.get("q_position", &c->sim.mpc.q_position);

@@ -74,13 +74,9 @@ void ParamReader::get(const std::string& key, std::vector<double>* value) {
   *value = out;
 }
 
-void ParamReader::get(const std::string& key, Eigen::Vector3d* value) {
-  std::vector<double> list;
-  const size_t before = errors_.size();
-  get(key, &list);
-  if (errors_.size() != before || list.empty()) return;
-  if (list.size() != 3) return fail(key, "expected a list of 3 numbers [x, y, z]");
-  *value = Eigen::Vector3d(list[0], list[1], list[2]);
+bool ParamReader::has(const std::string& key) {
+  used_.insert(nh_.resolveName(key));
+  return nh_.hasParam(key);
 }
 
 void ParamReader::checkUnknown(const std::string& prefix) {

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "surface_nbv/config/config_keys.h"
+
 namespace surface_nbv {
 
 Status DepthSimConfig::validate() const {
@@ -22,42 +24,10 @@ Status DepthSimConfig::validate() const {
   return Status::Ok();
 }
 
-void readCameraConfig(ParamReader* reader, CameraConfig* c) {
-  reader->get("camera/width", &c->width);
-  reader->get("camera/height", &c->height);
-  reader->get("camera/hfov_deg", &c->hfov_deg);
-  reader->get("camera/vfov_deg", &c->vfov_deg);
-  reader->get("camera/min_range", &c->min_range);
-  reader->get("camera/max_range", &c->max_range);
-  reader->get("camera/rate_hz", &c->rate_hz);
-  reader->get("camera/noise_k", &c->noise_k);
-  reader->get("camera/noise_seed", &c->noise_seed);
-  reader->get("camera/pitch_deg", &c->pitch_deg);
-  reader->get("camera/noise_sigma0", &c->sensor.noise_sigma0);
-  reader->get("camera/noise_sigma1", &c->sensor.noise_sigma1);
-  reader->get("camera/lateral_noise_px", &c->sensor.lateral_noise_px);
-  reader->get("camera/grazing_dropout_deg", &c->sensor.grazing_dropout_deg);
-  reader->get("camera/dropout_rate", &c->sensor.dropout_rate);
-  reader->get("camera/dropout_patch_fraction", &c->sensor.dropout_patch_fraction);
-  reader->get("camera/dropout_patch_size", &c->sensor.dropout_patch_size);
-  reader->get("camera/dropout_patch_rate", &c->sensor.dropout_patch_rate);
-  reader->get("camera/quantization", &c->sensor.quantization);
-}
-
-void readSceneConfig(ParamReader* reader, SceneConfig* c) {
-  reader->get("scene", &c->scene);
-  reader->get("scene_up_axis", &c->transform.up_axis);
-  reader->get("scene_scale", &c->transform.scale);
-  reader->get("scene_fit_size", &c->transform.fit_size);
-  reader->get("scene_offset", &c->transform.offset);
-  reader->get("crop_min", &c->transform.crop.min);
-  reader->get("crop_max", &c->transform.crop.max);
-}
-
 Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, DepthSimConfig* config) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &config->shared_namespace);
-  readSceneConfig(&reader, &config->scene);
+  readSceneKeys(reader, &config->scene);
   reader.get("world_frame", &config->world_frame);
   reader.get("camera_frame", &config->camera_frame);
   reader.get("render_threads", &config->render_threads);
@@ -67,17 +37,19 @@ Status loadDepthSimParams(const ros::NodeHandle& priv, CameraConfig* camera, Dep
   reader.get("stats_period", &config->stats_period);
   reader.get("export_directory", &config->export_directory);
   reader.get("encoding", &config->encoding);
-  reader.get("pose_drift_rate", &config->pose_error.drift_rate);
-  reader.get("pose_yaw_drift_deg", &config->pose_error.yaw_drift_deg);
-  reader.get("pose_jitter", &config->pose_error.jitter_position);
-  reader.get("pose_jitter_deg", &config->pose_error.jitter_angle_deg);
-  reader.get("pose_error_seed", &config->pose_error.seed);
+  // The odometry error of the mission section (nbv_mission's mission/pose_*
+  // keys), unless the node's own ~pose_* are given.
+  reader.get("mission_namespace", &config->mission_namespace);
+  ParamReader mission((ros::NodeHandle(config->mission_namespace)));
+  readPoseErrorKeys(mission, &config->pose_error);
+  if (Status s = mission.status(); !s) return s;
+  readPoseErrorKeys(reader, &config->pose_error);
   reader.checkUnknown();
   if (Status s = reader.status(); !s) return s;
   if (Status s = config->validate(); !s) return Status::Error(priv.getNamespace() + "/" + s.message());
 
   ParamReader shared_reader(ros::NodeHandle(config->shared_namespace));
-  readCameraConfig(&shared_reader, camera);
+  readCameraKeys(shared_reader, camera);
   shared_reader.checkUnknown("camera");
   if (Status s = shared_reader.status(); !s) return s;
   if (Status s = camera->validate(); !s) return Status::Error(shared_reader.ns() + "/" + s.message());

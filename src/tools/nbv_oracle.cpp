@@ -26,6 +26,7 @@
 
 #include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/oracle_planner.h"
+#include "surface_nbv/mission/scene_defaults.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
 

@@ -37,6 +37,7 @@
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/mission/scene_defaults.h"
 #include "surface_nbv/sim/depth_points.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/mesh_io.h"

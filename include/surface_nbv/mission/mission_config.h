@@ -9,12 +9,14 @@
 //               its other, node-only keys are not read here
 //   mission:    the mission itself (start pose, speed, frame rate, frontier
 //               period, budgets, seeds); every key optional, unknown keys refused.
-// ROS-free (yaml-cpp). Units: metres, seconds, radians unless a key says _deg.
+// The same readers (config/config_keys.h) read these keys in the ROS nodes,
+// so a file one refuses the other refuses. ROS-free (yaml-cpp). Units: metres, seconds, radians unless a key says _deg.
 #pragma once
 
 #include <set>
 #include <string>
 
+#include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/manhattan_yaw.h"
@@ -30,7 +32,12 @@
 
 namespace surface_nbv {
 
-struct MissionConfig {
+// The mission section's flight keys (speed, yaw_rate, leg_lookahead,
+// leg_yaw_tolerance, max_flight_time, start_spin) are MissionFlightConfig's, the
+// same keys and checks as nbv_planner's (config_keys.h).
+struct MissionConfig : MissionFlightConfig {
+  MissionConfig() { max_flight_time = 5400.0; }  // 90 minutes of flight; 0: no limit
+
   SceneConfig scene;
   CameraConfig camera;
   TsdfConfig tsdf;
@@ -50,21 +57,10 @@ struct MissionConfig {
   std::set<std::string> given_keys;
 
   Eigen::Vector4d start{0.0, 0.0, 2.0, 0.0};  // [x, y, z, yaw] at take-off
-  double speed = 0.5;              // reference speed [m/s] (the paper's)
-  double yaw_rate = 1.0;           // reference yaw rate [rad/s], at most the tracker's limit
   double frame_rate = 5.0;         // depth frames integrated per flight second
   double frontier_period = 4.0;    // flight seconds between frontier updates on a leg
-  // A leg ends (and the next is planned) once its reference has less than
-  // this many seconds left and the UAV is within the explorer's
-  // reach_tolerance of its end, facing its yaw to within leg_yaw_tolerance:
-  // the UAV flies on instead of stopping at every viewpoint. 0: a leg ends
-  // when its reference does.
-  double leg_lookahead = 0.0;      // s
-  double leg_yaw_tolerance = 0.35; // rad
-  double max_flight_time = 5400.0; // the mission stops there [s]
   double max_path_length = 0.0;    // or when the flown path reaches this [m]; 0: no limit
   double start_free_radius = 3.0;  // the take-off ball is free space [m]
-  double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
   double progress_period = 60.0;   // flight seconds between progress lines
   int threads = 2;                 // render, integration and frontier threads
   // Frames the mesh layer may lag behind the planning map (MeshLayer::
@@ -94,17 +90,16 @@ Status loadMissionConfig(const std::string& file, MissionConfig* config);
 // The same from YAML text; `name` stands for the file in errors.
 Status loadMissionConfigText(const std::string& text, const std::string& name, MissionConfig* config);
 
+// The body of both: the four sections from any ParamSource (YAML sections
+// here, ROS namespaces in ros/mission_params.h), with the tracker and mission
+// sections' unknown keys refused. Errors name the source's key.
+Status loadMissionConfigFrom(ParamSource& nbv, ParamSource& depth_sim, ParamSource& tracker, ParamSource& mission,
+                             MissionConfig* config);
+
 // The configuration for a built-in scene name or mesh file: config/<scene>.yaml
 // of the package when it exists (`package_dir` is the package's source
 // directory), else the defaults with the scene set.
 std::string defaultConfigFile(const std::string& package_dir, const std::string& scene);
-
-// A tool's mission config from its command line: --config FILE, else
-// config/<--scene>.yaml of the package when it exists (scene default
-// "plant"), then the scene options (scene_source.h) on top. *config_file
-// gets the file read, "" when none.
-Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir, MissionConfig* config,
-                             std::string* config_file);
 
 // The evaluation a mission's reconstruction is reported with (nbv_mission,
 // nbv_refuse): e_max from the voxel size, the camera's depth range and the

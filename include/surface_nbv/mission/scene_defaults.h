@@ -116,4 +116,11 @@ Status applySceneOptions(const CliArgs& args, MissionConfig* config);
 // The smallest distance from `p` to a triangle of `mesh` (infinity when empty).
 double distanceToMesh(const TriangleMesh& mesh, const Eigen::Vector3d& p);
 
+// A tool's mission config from its command line: --config FILE, else
+// config/<--scene>.yaml of the package when it exists (scene default
+// "plant"), then the scene options (scene_source.h) on top. *config_file
+// gets the file read, "" when none.
+Status missionConfigFromArgs(const CliArgs& args, const std::string& package_dir, MissionConfig* config,
+                             std::string* config_file);
+
 }  // namespace surface_nbv

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/sim/depth_camera.h"
@@ -14,6 +15,7 @@ namespace surface_nbv {
 
 struct MapperConfig {
   std::string shared_namespace = kSharedNamespace;
+  std::string mission_namespace = "/mission";  // invalid_pixels, start_free_radius (then ~)
   TsdfConfig tsdf;
   CameraConfig camera;            // only min_range / max_range are used (intrinsics come from CameraInfo)
   std::string world_frame = "world";
@@ -37,8 +39,7 @@ struct MapperConfig {
 // The shared map parameters of namespace `ns` (e.g. "/nbv"), as every node
 // reads them, for tests and tools that mirror the map.
 Status loadSharedMapConfig(const std::string& ns, TsdfConfig* map);
-// Reads voxel_size, w_th, bounds_min and bounds_max (the map every node shares).
-void readSharedMapConfig(ParamReader* shared, TsdfConfig* map);
+// (The keys themselves: readTsdfKeys of config/config_keys.h, as nbv_mission reads them.)
 
 Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* config);
 

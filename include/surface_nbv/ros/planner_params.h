@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/cluster_graph.h"
@@ -17,7 +18,10 @@
 
 namespace surface_nbv {
 
-struct PlannerNodeConfig {
+// speed, yaw_rate, leg_lookahead, leg_yaw_tolerance, max_flight_time (0: no
+// limit) and start_spin are MissionFlightConfig's (config_keys.h): the mission
+// section's keys (nbv_mission's), then the node's own (~) over them.
+struct PlannerNodeConfig : MissionFlightConfig {
   std::string shared_namespace = kSharedNamespace;
   // The explorer's keys (travel_yaw, reach_tolerance, ...) and the path
   // budget (path_iterations, path_time_budget) of the YAML's mission section,
@@ -50,19 +54,9 @@ struct PlannerNodeConfig {
   // leg ended (ROS time): the wall-clock timer alone left the UAV idle for up
   // to 1 / replan_rate wall seconds (2 s of flight at 4x) after every leg.
   bool prompt_ticks = true;
-  // mission/speed and mission/yaw_rate (nbv_mission's keys), or the node's own.
-  double speed = 0.5;             // m/s: reference speed of planner/trajectory
-  double yaw_rate = 1.0;          // rad/s: reference yaw rate (turns in place are timed by it), <= the UAV's limit
   double trajectory_spacing = 0.5;  // m between trajectory points along the path
   bool start_running = false;     // true: RUNNING from the start, else waits for ~start
-  double start_spin = 6.2832;     // rad turned in place at the first start, before the first plan
   double leg_settle = 0.5;        // s after a leg's last point before the leg counts as ended
-  // The leg also ends this many seconds before its last point when the UAV
-  // is within the explorer's reach_tolerance of it, facing its yaw to within
-  // leg_yaw_tolerance: it flies on instead of stopping (as nbv_mission's
-  // mission/leg_lookahead). 0: only by leg_settle.
-  double leg_lookahead = 0.0;     // s
-  double leg_yaw_tolerance = 0.35;  // rad
   // A leg decided while the UAV flew on starts where the UAV is when it is
   // sent (newest odometry, latest_odometry.h), joined straight to the
   // farthest point of its first leg_restart_reach metres that keeps the
@@ -80,10 +74,6 @@ struct PlannerNodeConfig {
   double off_track_time = 2.0;      // s
   double odometry_timeout = 1.0;  // s (ROS time) without odometry: hover
   double map_timeout = 10.0;      // s (ROS time) without a map update while running: hover
-  // s of flight (odometry time since the mission started) after which the
-  // mission ends as when it is done, with reason max_flight_time. 0: no
-  // limit. Also read from the mission section (nbv_mission's key).
-  double max_flight_time = 0.0;
   std::string report_directory;   // where DONE writes mission_report.json; empty = nowhere
   bool exit_when_done = false;    // shut the node down once DONE (with required="true" the launch ends)
   std::string save_map_service;   // called with "mission.tsdf" when DONE; empty = not called

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/pose_error.h"
@@ -16,6 +17,7 @@ namespace surface_nbv {
 struct DepthSimConfig {
   SceneConfig scene;
   std::string shared_namespace = kSharedNamespace;  // where camera/* lives
+  std::string mission_namespace = "/mission";        // where pose_* lives (then ~pose_*)
   std::string world_frame = "world";
   std::string camera_frame = "camera";
   int render_threads = 2;
@@ -38,12 +40,7 @@ struct DepthSimConfig {
   Status validate() const;
 };
 
-// Reads `camera/...` keys relative to the reader's namespace.
-void readCameraConfig(ParamReader* reader, CameraConfig* config);
-// Reads `scene`, `scene_up_axis`, `scene_scale`, `scene_fit_size`,
-// `scene_offset`, `crop_min`, `crop_max`.
-void readSceneConfig(ParamReader* reader, SceneConfig* config);
-
+// The keys (camera/*, scene*, pose_*) are read by config_keys.h, as nbv_mission reads them.
 // Loads and validates everything depth_sim needs: the node's private keys
 // from `priv` (unknown ones are errors), then camera/* from the shared
 // namespace that `~shared_namespace` names.

@@ -1,0 +1,69 @@
+// The config keys, one reader per struct, for both sides: the YAML sections
+// nbv_mission reads (config/yaml_param_source.h) and the ROS namespaces the
+// launch loads the same file into (ros/param_reader.h). A reader only reads
+// (a wrong type or an unknown enum name is an error of the source); every
+// range check is in the struct's validate(). Key names are the YAML's:
+//   nbv/        readTsdfKeys, readCameraKeys ("camera/..."), readSurfaceKeys,
+//               readUtilityKeys
+//   depth_sim/  readSceneKeys
+//   tracker/    readTrackerKeys
+//   mission/    readFlightKeys, readExplorerKeys, readPathKeys,
+//               readPoseErrorKeys, readInvalidPixelsKey
+// ROS-free.
+#pragma once
+
+#include <string>
+
+#include "surface_nbv/map/tsdf_config.h"
+#include "surface_nbv/planning/cluster_graph.h"
+#include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sim/pose_error.h"
+#include "surface_nbv/sim/scene_source.h"
+#include "surface_nbv/surface/surface_config.h"
+#include "surface_nbv/tracking/tracker_sim.h"
+#include "surface_nbv/util/param_source.h"
+
+namespace surface_nbv {
+
+// The reference a mission flies its legs at and when it ends: keys of the
+// mission section, read by nbv_mission and nbv_planner alike (MissionConfig
+// and PlannerNodeConfig are FlightConfigs), checked here once.
+struct MissionFlightConfig {
+  double speed = 0.5;              // reference speed [m/s] (the paper's), at most the tracker's v_max
+  double yaw_rate = 1.0;           // reference yaw rate [rad/s], at most the tracker's limit
+  // A leg ends (and the next is planned) once its reference has less than
+  // this many seconds left and the UAV is within the explorer's
+  // reach_tolerance of its end, facing its yaw to within leg_yaw_tolerance:
+  // the UAV flies on instead of stopping at every viewpoint. 0: a leg ends
+  // when its reference does.
+  double leg_lookahead = 0.0;      // s
+  double leg_yaw_tolerance = 0.35; // rad
+  double max_flight_time = 0.0;    // the mission ends there [s of flight]; 0: no limit
+  double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
+
+  // Names the first bad key ("speed expected in (0, 20] m/s").
+  Status validate() const;
+};
+
+void readFlightKeys(ParamSource& mission, MissionFlightConfig* c);
+void readTsdfKeys(ParamSource& nbv, TsdfConfig* c);
+void readCameraKeys(ParamSource& nbv, CameraConfig* c);
+// delta_pose, d_nu, d_nu_max, approach_range_fraction.
+void readSurfaceKeys(ParamSource& nbv, SurfaceConfig* c);
+// lambda_tc, lambda_ic (eq. 5).
+void readUtilityKeys(ParamSource& nbv, ClusterGraphConfig* c);
+void readSceneKeys(ParamSource& depth_sim, SceneConfig* c);
+// drag, v_max, a_max, yaw_rate_max, jerk_max; the MPC then plans with the model's limits.
+void readTrackerKeys(ParamSource& tracker, TrackerSimConfig* c);
+// The explorer's keys (match_radius ... tour_objective, gaze, gaze_step, gaze_min_ises).
+void readExplorerKeys(ParamSource& mission, ExplorerConfig* c);
+// path_time_budget, path_iterations, path_lattice_step, path_lattice_nodes.
+void readPathKeys(ParamSource& mission, PathPlannerConfig* c);
+// pose_drift_rate, pose_yaw_drift_deg, pose_jitter, pose_jitter_deg, pose_error_seed.
+void readPoseErrorKeys(ParamSource& mission, PoseErrorConfig* c);
+// `key` ("invalid_pixels"): 'ignore', 'clear' or 'clear_inf'.
+void readInvalidPixelsKey(ParamSource& source, const std::string& key, TsdfConfig* c);
+
+}  // namespace surface_nbv
