@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "surface_nbv/planning/open_path.h"
+#include "surface_nbv/surface/viewpoint_utility.h"
 
 namespace surface_nbv {
 namespace {
@@ -209,11 +210,11 @@ ClusterGraph::ClusterGraph(const Frontier& frontier, const Eigen::Vector4d& uav,
       e.d_lm = intra[v - 1].length[entry];
       e.reachable = std::isfinite(e.d_kl) && std::isfinite(e.d_lm);
       if (e.reachable && std::isfinite(e.gain) && e.gain > 0.0) {
-        e.utility = e.gain * std::exp(-config.lambda_tc * e.d_kl - config.lambda_ic * e.d_lm);
+        e.utility = edgeUtility(e.gain, e.d_kl, e.d_lm, config.lambda_tc, config.lambda_ic);
         e.cost = config.objective == TourObjective::kSum
-                     ? utilityToSumCost(e.utility, g_max)
+                     ? utilitySumCost(e.utility, g_max)
                      : std::min(CostMatrix::kUnreachable,
-                                utilityToCost(e.d_kl, e.d_lm, e.gain, g_max, config.lambda_tc, config.lambda_ic));
+                                utilityLogCost(e.gain, e.d_kl, e.d_lm, config.lambda_tc, config.lambda_ic, g_max));
       }
       costs_.at(u, v) = e.cost;
     }

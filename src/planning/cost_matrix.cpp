@@ -57,12 +57,4 @@ double CostMatrix::tourCost(const std::vector<int>& tour) const {
   return pathCost(tour) + (*this)(tour.back(), tour.front());
 }
 
-double utilityToCost(double d_kl, double d_lm, double g_v, double g_max, double lambda_tc, double lambda_ic) {
-  return lambda_tc * d_kl + lambda_ic * d_lm - std::log(g_v) + std::log(g_max);
-}
-
-double utilityToSumCost(double f_uv, double g_max) {
-  return kSumCostScale * std::clamp(1.0 - f_uv / g_max, 0.0, 1.0);
-}
-
 }  // namespace surface_nbv

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "surface_nbv/map/collision_map.h"
+#include "surface_nbv/planning/tour_head.h"
 #include "surface_nbv/util/angles.h"
 #include "surface_nbv/util/point_hash.h"
 
@@ -293,18 +294,12 @@ double Explorer::nearestValue(const std::vector<double>& values, const Eigen::Ve
 }
 
 void Explorer::promoteBestHead(const Eigen::Vector4d& uav) {
-  const size_t n = std::min(tour_.size(), static_cast<size_t>(std::max(config_.head_lookahead, 0)));
-  size_t best = 0;
-  double best_utility = -1.0;
   const double lambda = config_.head_lambda >= 0.0 ? config_.head_lambda : config_.graph.lambda_tc;
-  for (size_t i = 0; i < n; ++i) {
-    const double visible = head_gain_ ? head_gain_(tour_[i]) : nearestValue(wanted_.gain, tour_[i].head<3>(), 0.0);
-    Eigen::Vector3d delta = tour_[i].head<3>() - uav.head<3>();
-    delta.z() *= config_.head_vertical_scale;
-    const double d = delta.norm();
-    const double utility = visible * std::exp(-lambda * d);
-    if (utility > best_utility) best = i, best_utility = utility;
-  }
+  const auto gain = [this](const Eigen::Vector4d& q) {
+    return head_gain_ ? head_gain_(q) : nearestValue(wanted_.gain, q.head<3>(), 0.0);
+  };
+  const size_t best = bestTourHead(tour_, uav, static_cast<size_t>(std::max(config_.head_lookahead, 0)), lambda,
+                                   config_.head_vertical_scale, gain);
   if (best == 0) return;
   std::rotate(tour_.begin(), tour_.begin() + static_cast<std::ptrdiff_t>(best),
               tour_.begin() + static_cast<std::ptrdiff_t>(best) + 1);

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "surface_nbv/surface/point_grid.h"
+#include "surface_nbv/surface/viewpoint_utility.h"
 
 #include "surface_nbv/surface/chunked_for.h"
 
@@ -128,7 +129,7 @@ std::vector<Cluster> ViewpointClusterer::cluster(const CollisionMap& collision, 
       }
     }
     clusters[c].visible_ises = count;
-    clusters[c].gain = num_ises > 0 ? static_cast<double>(count) / static_cast<double>(num_ises) : 0.0;
+    clusters[c].gain = clusterGain(count, num_ises);
   }
   return clusters;
 }

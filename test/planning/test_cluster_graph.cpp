@@ -9,6 +9,7 @@
 
 #include "planning_test_worlds.h"
 #include "surface_nbv/planning/path_planner.h"
+#include "surface_nbv/surface/viewpoint_utility.h"
 
 using namespace surface_nbv;
 
@@ -140,7 +141,7 @@ TEST(ClusterGraph, SumObjectiveMaximisesTheTotalUtilityProductTheShortestPath) {
       EXPECT_NEAR(plan.utility, best_sum, 1e-12);
       for (int v = 1; v <= 3; ++v) {
         const ClusterEdge& e = g.edge(0, v);
-        EXPECT_NEAR(e.cost, utilityToSumCost(e.utility, 1.0), 1e-12);
+        EXPECT_NEAR(e.cost, utilitySumCost(e.utility, 1.0), 1e-12);
         EXPECT_GE(e.cost, 0.0);
         EXPECT_LE(e.cost, kSumCostScale);
       }
@@ -158,8 +159,8 @@ TEST(ClusterGraph, SumObjectiveMaximisesTheTotalUtilityProductTheShortestPath) {
   EXPECT_EQ(parsed, TourObjective::kProduct);
   EXPECT_FALSE(parseTourObjective("Sum", &parsed));
   EXPECT_EQ(parsed, TourObjective::kProduct);
-  EXPECT_DOUBLE_EQ(utilityToSumCost(0.0, 0.5), kSumCostScale);
-  EXPECT_DOUBLE_EQ(utilityToSumCost(0.5, 0.5), 0.0);
+  EXPECT_DOUBLE_EQ(utilitySumCost(0.0, 0.5), kSumCostScale);
+  EXPECT_DOUBLE_EQ(utilitySumCost(0.5, 0.5), 0.0);
 }
 
 TEST(ClusterGraph, ExactIntraPathMatchesBruteForce) {

@@ -4,6 +4,7 @@
 
 #include <numeric>
 
+#include "surface_nbv/surface/viewpoint_utility.h"
 #include "tsp_test_helpers.h"
 
 using namespace surface_nbv;
@@ -46,8 +47,8 @@ TEST(OpenPath, PerNodeConstantLeavesTheOptimumUnchanged) {
   }
   const TourResult a = solveOpenPath(m, 4), b = solveOpenPath(shifted, 4);
   EXPECT_DOUBLE_EQ(m.pathCost(b.tour), a.cost);
-  EXPECT_NEAR(utilityToCost(2.0, 3.0, 0.5, 2.0, 0.1, 0.2), 0.1 * 2 + 0.2 * 3 + std::log(4.0), 1e-12);
-  EXPECT_NEAR(utilityToCost(0.0, 0.0, 2.0, 2.0, 0.1, 0.2), 0.0, 1e-12);
+  EXPECT_NEAR(utilityLogCost(0.5, 2.0, 3.0, 0.1, 0.2, 2.0), 0.1 * 2 + 0.2 * 3 + std::log(4.0), 1e-12);
+  EXPECT_NEAR(utilityLogCost(2.0, 0.0, 0.0, 0.1, 0.2, 2.0), 0.0, 1e-12);
 }
 
 TEST(OpenPath, DegenerateAndInvalidStarts) {

@@ -10,10 +10,11 @@
 //   tau_lm the shortest Hamiltonian path through v's viewpoints starting at q_l
 //          (end q_m free): exact (Held-Karp over subsets) for <= kExactClusterSize
 //          viewpoints, nearest neighbour + 2-opt otherwise,
-//   f_uv   = g(v) exp(-lambda_tc d_kl - lambda_ic d_lm)   (eq. 5),
-//   cost   = utilityToCost(...) = -log f_uv + log g_max >= 0, the TSP arc cost
-//            (objective kProduct), or utilityToSumCost(f_uv, g_max) =
-//            kSumCostScale (1 - f_uv / g_max) (objective kSum).
+//   f_uv   = g(v) exp(-lambda_tc d_kl - lambda_ic d_lm)   (eq. 5, edgeUtility),
+//   cost   = utilityLogCost(...) = -log f_uv + log g_max >= 0, the TSP arc cost
+//            (objective kProduct), or utilitySumCost(f_uv, g_max) =
+//            kSumCostScale (1 - f_uv / g_max) (objective kSum); both in
+//            surface/viewpoint_utility.h.
 //
 // Simplification (documented, deliberate): in a pairwise graph the way u was
 // entered is not known, so u's exit is fixed per cluster: q_k = the end of u's

@@ -39,22 +39,4 @@ class CostMatrix {
   std::vector<double> data_;
 };
 
-// The tour cost of moving to cluster v (docs/method.md eq. 5): cost = -log f_uv
-//   = lambda_tc * d_kl + lambda_ic * d_lm - log g(v), made non-negative by
-// adding log(g_max), g_max >= every g(v) > 0. The added constant is the same
-// for every arc into v, so it shifts every tour (each node entered once) and
-// every open path from a fixed start (each non-start node entered once) by the
-// same amount: the optimal order is unchanged. Minimising it maximises the
-// product of the utilities f_uv along the tour.
-double utilityToCost(double d_kl, double d_lm, double g_v, double g_max, double lambda_tc, double lambda_ic);
-
-// The tour cost that maximises the sum of the utilities instead:
-// kSumCostScale * (1 - f_uv / g_max), in [0, kSumCostScale] for 0 <= f_uv <=
-// g_max. Every open path from a fixed start has one arc per non-start node,
-// so minimising the sum of these costs maximises the sum of the f_uv. The
-// scale keeps the differences between tours far above the rounding of the
-// Jonker-Volgenant offsets (jonker_volgenant.h).
-constexpr double kSumCostScale = 10.0;
-double utilityToSumCost(double f_uv, double g_max);
-
 }  // namespace surface_nbv

@@ -5,7 +5,7 @@
 // merged into the start: a closed tour start -> ... -> last -> start then
 // costs exactly the open path start -> ... -> last, so optimal tours and
 // optimal paths correspond. Nothing else in the matrix changes, so a
-// per-node constant added to the arcs into each node (utilityToCost) still
+// per-node constant added to the arcs into each node (utilityLogCost) still
 // leaves the optimum unchanged.
 #pragma once
 
