@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/ros/mapper_params.h"
 #include "surface_nbv/ros/sim_params.h"
 
@@ -36,6 +37,8 @@ Status loadExtractorParams(const ros::NodeHandle& priv, ExtractorConfig* c) {
   reader.get("world_frame", &c->world_frame);
   reader.get("mission_namespace", &c->mission_namespace);
   // The mission section's keys of this stage (nbv_mission's), then the node's own.
+  // With a mission section the frontier period defaults to nbv_mission's.
+  if (ros::param::has(c->mission_namespace)) c->frontier_period = MissionConfig().frontier_period;
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
   mission.get("frontier_period", &c->frontier_period);
   mission.get("collision_radius", &s.collision_radius);

@@ -5,6 +5,7 @@
 
 #include <ros/param.h>
 
+#include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/ros/sim_params.h"
 
 namespace surface_nbv {
@@ -50,6 +51,8 @@ Status loadMapperParams(const ros::NodeHandle& priv, MapperConfig* c) {
   c->tsdf.max_blocks = max_blocks > 0 ? static_cast<size_t>(max_blocks) : 0;
   // The mission section's invalid_pixels and start_free_radius (nbv_mission's
   // keys), unless the node's own are given.
+  // With a mission section the take-off ball defaults to nbv_mission's.
+  if (ros::param::has(c->mission_namespace)) c->start_free_radius = MissionConfig().start_free_radius;
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
   readInvalidPixelsKey(mission, "invalid_pixels", &c->tsdf);
   mission.get("start_free_radius", &c->start_free_radius);

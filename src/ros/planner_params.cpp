@@ -50,8 +50,10 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   // A mission section (the launch loads the YAML's into mission_namespace)
   // is read and checked whole as nbv_mission reads it: a file nbv_mission
   // refuses, the planner refuses, with the same reason.
+  // With a mission section the flight-time limit defaults to nbv_mission's.
   if (ros::param::has(c->mission_namespace)) {
     if (Status st = loadMissionParams(c->shared_namespace, c->mission_namespace, nullptr); !st) return st;
+    c->max_flight_time = MissionConfig().max_flight_time;
   }
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
   readExplorerKeys(mission, &c->explorer);
