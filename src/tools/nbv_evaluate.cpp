@@ -12,8 +12,10 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <iostream>
 
+#include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/eval/evaluator.h"
 #include "surface_nbv/eval/report_writer.h"
 #include "surface_nbv/sim/mesh_io.h"
@@ -43,7 +45,7 @@ int failure(const std::string& message) {
 }
 
 Status configFromArgs(const CliArgs& args, EvalConfig* config) {
-  if (!args.has("voxel-size")) return Status::Error("--voxel-size is required");
+  if (!args.has("voxel-size") && !args.has("config")) return Status::Error("--voxel-size (or --config) is required");
   int seed = static_cast<int>(config->seed);
   const Status parsed[] = {args.getDouble("voxel-size", &config->voxel_size),
                            args.getDouble("spacing", &config->point_spacing),
@@ -86,7 +88,7 @@ int makePlots(const std::string& out_dir) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> options = {"reconstruction", "ground-truth", "voxel-size", "bounds",
+  std::vector<std::string> options = {"reconstruction", "ground-truth", "voxel-size", "bounds", "config",
                                       "spacing",        "min-range",    "max-range",  "collision-radius",
                                       "seed",           "threads",      "out"};
   for (const std::string& name : sceneOptionNames()) {
@@ -100,9 +102,18 @@ int main(int argc, char** argv) {
     return badArguments("--reconstruction and --ground-truth are required");
   }
   EvalConfig config;
+  SceneConfig ground_truth_config;
+  if (args.has("config")) {  // as nbv_mission evaluates (missionEvalConfig)
+    MissionConfig mission;
+    std::stringstream files(args.get("config", ""));
+    for (std::string file; std::getline(files, file, ',');) {
+      if (Status s = loadMissionConfig(file, &mission); !s) return failure(s.message());
+    }
+    config = missionEvalConfig(mission);
+    ground_truth_config.transform = mission.scene.transform;
+  }
   config.threads = 2;
   if (Status s = configFromArgs(args, &config); !s) return badArguments(s.message());
-  SceneConfig ground_truth_config;
   ground_truth_config.scene = args.get("ground-truth", "");
   if (Status s = sceneConfigFromArgs(args, &ground_truth_config); !s) return badArguments(s.message());
   const std::string reconstruction_path = args.get("reconstruction", "");
