@@ -101,11 +101,8 @@ void readExplorerKeys(ParamSource& m, ExplorerConfig* e) {
   m.get("max_visits", &e->max_visits);
   m.get("blacklist_radius", &e->blacklist_radius);
   m.get("always_full", &e->always_full);
-  m.get("full_on_leg_end", &e->full_on_leg_end);
   m.get("travel_yaw", &e->travel_yaw);
   m.get("turn_distance", &e->turn_distance);
-  m.get("turn_lead", &e->turn_lead);
-  m.get("reach_clearance", &e->reach_clearance);
   m.get("min_visible", &e->min_visible);
   m.get("head_lookahead", &e->head_lookahead);
   m.get("head_unknown", &e->head_unknown);

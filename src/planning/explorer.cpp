@@ -47,7 +47,6 @@ Status ExplorerConfig::validate() const {
     return Status::Error("leg_time_budget expected >= 0 s (0: no limit)");
   }
   if (!(turn_distance >= 0.0) || !std::isfinite(turn_distance)) return Status::Error("turn_distance expected >= 0");
-  if (!(turn_lead >= 0.0) || !std::isfinite(turn_lead)) return Status::Error("turn_lead expected >= 0");
   if (head_lookahead < 0) return Status::Error("head_lookahead expected >= 0");
   if (!std::isfinite(head_lambda)) return Status::Error("head_lambda expected finite");
   if (!(head_vertical_scale >= 0.0 && std::isfinite(head_vertical_scale))) {
@@ -59,7 +58,6 @@ Status ExplorerConfig::validate() const {
   }
   if (min_visible < 0) return Status::Error("min_visible expected >= 0");
   if (!(pool_unknown_below >= 0.0) || pool_unknown_below > 1.0) return Status::Error("pool_unknown_below expected in [0, 1]");
-  if (!(reach_clearance >= 0.0) || reach_clearance > 1.0) return Status::Error("reach_clearance expected in [0, 1] m");
   if (empty_updates_before_done < 1) return Status::Error("empty_updates_before_done expected >= 1");
   return Status::Ok();
 }
@@ -350,7 +348,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
     const Eigen::Vector4d target = tour_.front();
     last_target = target.head<3>();
     if (config_.check_reachable && map_ != nullptr) {
-      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), planner_.clearance() + config_.reach_clearance);
+      if (!reach_filled_) reach_.fill(*map_, bounds_, from.head<3>(), planner_.clearance());
       reach_filled_ = true;
       if (!reach_.reachable(target.head<3>())) {
         countFailure(target.head<3>());
@@ -423,31 +421,16 @@ void Explorer::orientLeg(std::vector<Eigen::Vector4d>* path, const Eigen::Vector
   // over its final turn_distance metres (all of it when shorter).
   for (size_t i = 0; i + 1 < p.size(); ++i) p[i].w() = headings[i];
   p.back().w() = target.w();
-  // With turn_lead > 0 the UAV keeps its yaw at the start and turns to the
-  // first heading over turn_lead metres per radian of turn, while it flies.
-  const double start_turn = config_.turn_lead * std::abs(wrapAngle(headings.front() - start_yaw));
-  if (config_.turn_lead > 0.0) p.front().w() = start_yaw;
   const Eigen::Vector3d a = p[p.size() - 2].head<3>(), b = p.back().head<3>();
   const double last = (b - a).norm();
-  // Room the start turn leaves on the last segment when it is also the first.
-  const double start_on_last = p.size() == 2 ? start_turn : 0.0;
-  if (last > config_.turn_distance + start_on_last + 0.1) {
+  if (last > config_.turn_distance + 0.1) {
     Eigen::Vector4d turn_point;
     turn_point << b + (a - b) * (config_.turn_distance / last), headings.back();
     p.insert(p.end() - 1, turn_point);
   } else if (p.size() == 2) {
-    // One short segment: the UAV turns to its heading at the start (in place,
-    // unless turn_lead), then to the target's yaw along all of it.
+    // One short segment: the UAV turns to its heading at the start (in
+    // place), then to the target's yaw along all of it.
     return;
-  }
-  if (config_.turn_lead > 0.0 && start_turn > 0.0) {
-    const Eigen::Vector3d s0 = p[0].head<3>(), s1 = p[1].head<3>();
-    const double first = (s1 - s0).norm();
-    if (first > start_turn + 0.1) {
-      Eigen::Vector4d lead_point;
-      lead_point << s0 + (s1 - s0) * (start_turn / first), headings.front();
-      p.insert(p.begin() + 1, lead_point);
-    }
   }
 }
 
@@ -528,12 +511,8 @@ ExplorerDecision Explorer::update(const Frontier& frontier, const Eigen::Vector4
   const bool initial = stats_.full_recomputes == 0;
   bool have_tour = false;
   if (!tour_.empty() && !config_.always_full) have_tour = localUpdate(f, uav, &d);
-  // full_on_leg_end: a new target is due (the leg ended or its target was
-  // covered), so the order of the rest is recomputed from here.
-  const bool leg_end_full = have_tour && config_.full_on_leg_end && !have_target_;
-  if (leg_end_full) have_tour = false;
   if (!have_tour) {
-    if (d.reason == ReplanReason::kNone || (d.reason == ReplanReason::kTargetReached && !leg_end_full)) {
+    if (d.reason == ReplanReason::kNone || d.reason == ReplanReason::kTargetReached) {
       d.reason = requested_ ? ReplanReason::kRequested : initial ? ReplanReason::kInitial : ReplanReason::kTourFinished;
     }
     requested_ = false;

@@ -367,61 +367,6 @@ TEST(Explorer, TravelYawLooksAlongTheLegAndTurnsToTheTargetAtTheEnd) {
   EXPECT_NEAR(p.path.back().w(), 2.0, 1e-9);
 }
 
-// turn_lead: the leg keeps the UAV's yaw at its start and reaches the first
-// heading turn_lead metres per radian further on, so nothing turns in place.
-TEST(Explorer, TurnLeadTurnsWhileFlyingInsteadOfInPlace) {
-  WallWorld world(true);
-  Frontier f = makeFrontier({{{4.5, 0, 2.5}}});
-  f.viewpoints[0].yaw = 2.0;
-  for (double lead : {0.0, 0.5}) {
-    ExplorerConfig config;
-    config.travel_yaw = true;
-    config.turn_distance = 1.5;
-    config.turn_lead = lead;
-    const ExplorerDecision d = firstDecision(config, world, f);
-    ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-    ASSERT_GE(d.path.size(), 3u);
-    const Eigen::Vector2d step = (d.path[1] - d.path[0]).head<2>();
-    const double heading = std::atan2(step.y(), step.x());
-    if (lead == 0.0) {
-      // The first vertex already looks along the leg: a turn in place from the UAV's yaw.
-      EXPECT_NEAR(d.path[0].w(), heading, 1e-9);
-      continue;
-    }
-    EXPECT_NEAR(d.path[0].w(), kUav.w(), 1e-9);
-    const double turn = std::abs(std::remainder(heading - kUav.w(), 2.0 * M_PI));
-    ASSERT_GT(turn, 0.1) << "the test needs a leg that does not start along the UAV's yaw";
-    EXPECT_NEAR((d.path[1] - d.path[0]).head<3>().norm(), lead * turn, 1e-6);
-    EXPECT_NEAR(d.path[1].w(), heading, 1e-9);
-    EXPECT_NEAR(d.path.back().w(), 2.0, 1e-9);
-    expectFree(world.collision(), d.path);
-  }
-  ExplorerConfig bad;
-  bad.turn_lead = -0.5;
-  EXPECT_NE(bad.validate().message().find("turn_lead"), std::string::npos);
-}
-
-// full_on_leg_end: reaching a target recomputes the whole tour from the UAV
-// instead of keeping the old order.
-TEST(Explorer, FullOnLegEndRecomputesTheTourWhenATargetIsReached) {
-  WallWorld world(true);
-  const Frontier f = makeFrontier({{{-3, 2, 2.5}}, {{-3, -4.5, 2.5}}, {{-2, 4, 2.5}}});
-  for (bool full : {false, true}) {
-    ExplorerConfig config;
-    config.full_on_leg_end = full;
-    Explorer explorer(config, pathConfig());
-    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
-    ExplorerDecision d = explorer.update(f, kUav, false);
-    ASSERT_EQ(d.action, ExplorerAction::kFly);
-    d = explorer.update(f, d.target, true);
-    ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
-    EXPECT_EQ(d.reason, ReplanReason::kTargetReached);
-    EXPECT_EQ(d.full_recompute, full);
-    EXPECT_EQ(explorer.stats().full_recomputes, full ? 2u : 1u);
-    EXPECT_EQ(explorer.stats().targets_reached, 1u);
-  }
-}
-
 // min_visible: a viewpoint whose C_q is empty leaves the tour; when nothing
 // else is left the filter is lifted rather than ending the mission.
 TEST(Explorer, ViewpointsThatSeeNothingAreLeftOutOfTheTour) {

@@ -53,19 +53,11 @@ struct ExplorerConfig {
   double blacklist_radius = 1.0;  // m
   int max_leg_attempts = 6;       // targets tried per decision before hovering
   bool always_full = false;       // recompute the whole tour on every frontier (comparison mode)
-  // Recompute the whole tour whenever a new target is chosen after a leg
-  // ended (reached, failed or covered), not only when the tour ran out:
-  // cheapest insertions then never pile up into a zigzag tour.
-  bool full_on_leg_end = false;
   // Path yaw: false interpolates from the start yaw to the target's along the
   // whole leg; true looks along the direction of travel on each segment and
   // turns to the target's yaw over the last turn_distance metres.
   bool travel_yaw = false;
   double turn_distance = 2.0;     // m
-  // travel_yaw only: 0 turns in place to the first heading at a leg's start
-  // (the UAV stops); > 0 keeps the start yaw and turns while flying, over this
-  // many metres per radian (speed / yaw rate turns at the full yaw rate).
-  double turn_lead = 0.0;         // m/rad
   // When a new target is due, the first head_lookahead tour viewpoints are
   // compared by eq. 5's utility for one viewpoint, |C_q| exp(-lambda_tc d),
   // d the straight distance from the UAV, and the best one is flown first
@@ -102,11 +94,7 @@ struct ExplorerConfig {
   bool check_reachable = false;
   // The fill keeps cells whose centre is the planner's clearance (the
   // collision radius plus half a motion-check step, PathPlanner::clearance)
-  // from obstacles, plus this [m]. A fill at the bare radius let through
-  // passages the planner refuses, and targets behind them cost the roadmap
-  // its whole budget on every attempt: minutes of wall time per decision
-  // and the stalls of docs/planner_experiments.md.
-  double reach_clearance = 0.0;
+  // from obstacles: what the planner accepts.
   // A frontier without any ISE of C_ins before one was ever seen is a map
   // that has not seen enough yet, not a finished mission: a late first frame
   // (no ISE at all), or first frames whose ISEs all wait in C_rem because no
