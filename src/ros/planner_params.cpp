@@ -45,6 +45,8 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   ParamReader reader(priv);
   reader.get("shared_namespace", &c->shared_namespace);
   reader.get("mission_namespace", &c->mission_namespace);
+  std::string tracker_namespace = kTrackerNamespace;
+  reader.get("tracker_namespace", &tracker_namespace);
   // The mission section first (the same settings as the headless runner),
   // then the node's own parameters over it.
   // A mission section (the launch loads the YAML's into mission_namespace)
@@ -52,7 +54,7 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   // refuses, the planner refuses, with the same reason.
   // With a mission section the flight-time limit defaults to nbv_mission's.
   if (ros::param::has(c->mission_namespace)) {
-    if (Status st = loadMissionParams(c->shared_namespace, c->mission_namespace, nullptr); !st) return st;
+    if (Status st = loadMissionParams(c->shared_namespace, c->mission_namespace, tracker_namespace, nullptr); !st) return st;
     c->max_flight_time = MissionConfig().max_flight_time;
   }
   ParamReader mission((ros::NodeHandle(c->mission_namespace)));
@@ -90,8 +92,6 @@ Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* c) {
   reader.get("collision_cell_size", &c->collision.min_cell_size);
   readMapFeedKeys(&reader, &c->feed);
   reader.get("stats_period", &c->stats_period);
-  std::string tracker_namespace = kTrackerNamespace;
-  reader.get("tracker_namespace", &tracker_namespace);
   reader.checkUnknown();
   if (Status st = reader.status(); !st) return st;
 

@@ -82,7 +82,7 @@ struct NodeLoads {
 NodeLoads loadThroughNodes() {
   NodeLoads r;
   ros::NodeHandle priv("~");
-  r.mission = loadMissionParams("/nbv", "/mission", &r.m);
+  r.mission = loadMissionParams("/nbv", "/mission", kTrackerNamespace, &r.m);
   r.planner = loadPlannerParams(priv, &r.planner_config);
   r.mapper = loadMapperParams(priv, &r.mapper_config);
   r.extractor = loadExtractorParams(priv, &r.extractor_config);

@@ -11,8 +11,9 @@
 
 namespace surface_nbv {
 
-// `config` may be null (check only).
+// `config` may be null (check only). The tracker section from
+// `tracker_namespace` (nbv_planner's ~tracker_namespace, "/tracker").
 Status loadMissionParams(const std::string& shared_namespace, const std::string& mission_namespace,
-                         MissionConfig* config);
+                         const std::string& tracker_namespace, MissionConfig* config);
 
 }  // namespace surface_nbv
