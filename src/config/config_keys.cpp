@@ -4,21 +4,6 @@
 
 namespace surface_nbv {
 
-Status MissionFlightConfig::validate() const {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(speed) || speed > 20.0) return Status::Error("speed expected in (0, 20] m/s");
-  if (!positive(yaw_rate) || yaw_rate > 10.0) return Status::Error("yaw_rate expected in (0, 10] rad/s");
-  if (!(leg_lookahead >= 0.0) || leg_lookahead > 60.0) return Status::Error("leg_lookahead expected in [0, 60] s");
-  if (!(leg_yaw_tolerance > 0.0) || leg_yaw_tolerance > M_PI) {
-    return Status::Error("leg_yaw_tolerance expected in (0, pi] rad");
-  }
-  if (!(max_flight_time >= 0.0) || !std::isfinite(max_flight_time)) {
-    return Status::Error("max_flight_time expected >= 0 s (0: no limit)");
-  }
-  if (!(start_spin >= 0.0) || start_spin > 20.0) return Status::Error("start_spin expected in [0, 20] rad");
-  return Status::Ok();
-}
-
 void readFlightKeys(ParamSource& m, MissionFlightConfig* c) {
   m.get("speed", &c->speed);
   m.get("yaw_rate", &c->yaw_rate);

@@ -13,6 +13,16 @@ namespace surface_nbv {
 // The body of loadMissionConfig on a parsed document; `file` names it in errors.
 Status loadMissionConfigNode(const YAML::Node& root, const std::string& file, MissionConfig* c);
 
+SupervisorConfig MissionConfig::supervisorConfig() const {
+  SupervisorConfig rules;
+  rules.flight = *this;
+  rules.reach_tolerance = explorer.reach_tolerance;
+  rules.frontier_period = frontier_period;
+  rules.leg_settle = -1.0;
+  rules.max_path_length = max_path_length;
+  return rules;
+}
+
 Status MissionConfig::validate() const {
   if (Status s = scene.validate(); !s) return s;
   if (Status s = camera.validate(); !s) return s;

@@ -9,6 +9,7 @@
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/mission/oracle_gain.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/scripted_flight.h"
 #include "surface_nbv/surface/frontier_builder.h"
@@ -31,17 +32,10 @@ Trajectory legTrajectory(const std::vector<Eigen::Vector4d>& path, const UavStat
   return timeWaypoints(waypoints, t0, speed, yaw_rate);
 }
 
-// Whether the tracker's leg is over for planning: finished, or (lookahead > 0)
-// nearly over with the UAV already at its end (see MissionConfig).
-bool legEnded(const TrackerSim& tracker, double lookahead, double reach, double yaw_tolerance) {
-  if (tracker.mode() == TrackerMode::kFinished) return true;
-  if (lookahead <= 0.0 || tracker.mode() != TrackerMode::kTracking || tracker.trajectory().points().empty()) {
-    return false;
-  }
-  const TrajectoryPoint& end = tracker.trajectory().points().back();
-  const UavState& s = tracker.state();
-  return tracker.time() + lookahead >= end.t && (s.p_W - end.p_W).norm() <= reach &&
-         std::abs(wrapAngle(s.yaw - end.yaw)) <= yaw_tolerance;
+// Where a trajectory ends, [x, y, z, yaw].
+Eigen::Vector4d trajectoryEnd(const Trajectory& t) {
+  const TrajectoryPoint& end = t.points().back();
+  return Eigen::Vector4d(end.p_W.x(), end.p_W.y(), end.p_W.z(), end.yaw);
 }
 
 // A decision slower than this (wall) is reported on stderr as it happens.
@@ -138,15 +132,24 @@ MissionResult MissionRunner::run() {
   initial.p_W = c.start.head<3>();
   initial.yaw = c.start.w();
   TrackerSim tracker(c.tracker, initial);
-  // Take-off: turn in place to see around before the first plan.
-  if (c.start_spin > 0.0) {
-    std::vector<Eigen::Vector4d> spin;
-    const int steps = std::max(1, static_cast<int>(std::ceil(c.start_spin / (0.5 * M_PI))));
-    for (int k = 1; k <= steps; ++k) {
-      spin.emplace_back(c.start.x(), c.start.y(), c.start.z(), c.start.w() + c.start_spin * k / steps);
+  // The mission's rules (take-off spin, leg ends, decisions every
+  // frontier_period, limits) are the supervisor's; this loop carries them out.
+  MissionSupervisor supervisor(c.supervisorConfig());
+  supervisor.setRecording(recording_);
+  // A leg is flown on the estimate; the supervisor compares its end with the
+  // UAV in the map's world.
+  const auto fly = [&](const std::vector<Eigen::Vector4d>& leg) {
+    const Trajectory t = legTrajectory(leg, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
+    const Status s = tracker.setTrajectory(t);
+    if (s) {
+      const Eigen::Vector4d end = trajectoryEnd(t);
+      supervisor.legSent(c.manhattan_yaw.enabled ? toMap(end) : end, t.points().back().t);
     }
-    const Trajectory t = legTrajectory(spin, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
-    if (Status s = tracker.setTrajectory(t); !s) {
+    return s;
+  };
+  // Take-off: turn in place to see around before the first plan.
+  if (const std::vector<Eigen::Vector4d> spin = supervisor.takeOff(c.start); !spin.empty()) {
+    if (Status s = fly(spin); !s) {
       result.status = Status::Error("take-off spin refused: " + s.message());
       return result;
     }
@@ -154,17 +157,13 @@ MissionResult MissionRunner::run() {
 
   const double frame_dt = 1.0 / c.frame_rate;
   double next_frame = 0.0;
-  double next_frontier = c.start_spin > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
   double next_progress = 0.0;
   double next_checkpoint = checkpoint_period_ > 0.0 ? checkpoint_period_ : std::numeric_limits<double>::infinity();
   double last_checkpoint = 0.0;
   Frontier frontier;
   DepthImage depth;
   Eigen::Vector3d last_p = tracker.state().p_W;
-  bool spinning = c.start_spin > 0.0;
-  const auto pathLeft = [&] { return !(c.max_path_length > 0.0) || result.path_length < c.max_path_length; };
-  const auto timeLeft = [&] { return !(c.max_flight_time > 0.0) || tracker.time() < c.max_flight_time; };
-  while (timeLeft() && pathLeft()) {
+  while (supervisor.limitReached(tracker.time(), result.path_length).empty()) {
     // Fly to the next frame time.
     const auto t_track = Clock::now();
     while (tracker.time() + 1e-9 < next_frame) {
@@ -218,13 +217,13 @@ MissionResult MissionRunner::run() {
       next_checkpoint += checkpoint_period_;
     }
 
-    const bool leg_finished =
-        legEnded(tracker, c.leg_lookahead, c.explorer.reach_tolerance, c.leg_yaw_tolerance);
-    if (spinning && leg_finished) {
-      spinning = false;
-      next_frontier = tracker.time();
-    }
-    if (tracker.time() + 1e-9 < next_frontier && !(leg_finished && explorer.hasTarget())) continue;
+    SupervisorInput in;
+    in.t = tracker.time();
+    in.uav = uav;
+    in.path_length = result.path_length;
+    in.tracker_finished = tracker.mode() == TrackerMode::kFinished;
+    in.has_target = explorer.hasTarget();
+    if (supervisor.poll(in) != SupervisorStep::kDecide) continue;
 
     // Map -> collision map -> frontier -> decision.
     const auto t_collision = Clock::now();
@@ -242,7 +241,7 @@ MissionResult MissionRunner::run() {
     result.times.frontier += frontier_ms;
     result.max_frontier_ms = std::max(result.max_frontier_ms, frontier_ms);
     ++result.frontier_updates;
-    const ExplorerDecision d = explorer.update(frontier, uav, leg_finished);
+    const ExplorerDecision d = supervisor.decide(&explorer, frontier, in);
     result.times.graph += d.timings.graph_ms;
     result.times.tour += d.timings.tour_ms;
     result.times.path += d.timings.path_ms;
@@ -252,7 +251,6 @@ MissionResult MissionRunner::run() {
                    tracker.time(), 1e-3 * d.timings.total_ms, toString(d.action), toString(d.reason), uav.x(), uav.y(),
                    uav.z(), explorer.stats().leg_failures, d.message.c_str());
     }
-    next_frontier = tracker.time() + c.frontier_period;
 
     MissionEvent event;
     event.t = tracker.time();
@@ -281,8 +279,8 @@ MissionResult MissionRunner::run() {
     result.events.push_back(event);
 
     if (done) {
-      result.completed = d.reason == ReplanReason::kComplete;
-      result.end_reason = std::string(toString(d.reason)) + ": " + d.message;
+      result.completed = supervisor.completed();
+      result.end_reason = supervisor.endReason();
       break;
     }
     if (d.action == ExplorerAction::kFly) {
@@ -290,10 +288,10 @@ MissionResult MissionRunner::run() {
       if (c.manhattan_yaw.enabled) {
         for (Eigen::Vector4d& q : leg) q = toEstimate(q);
       }
-      const Trajectory t = legTrajectory(leg, tracker.state(), tracker.time(), c.speed, c.yaw_rate);
-      if (Status s = tracker.setTrajectory(t); !s) tracker.hold();
+      if (!fly(leg)) tracker.hold(), supervisor.legDropped();
     } else if (d.action == ExplorerAction::kHover) {
       tracker.hold();
+      supervisor.legDropped();
     }
   }
   if (Status s = mesh_layer_->finish(); !s && result.status) {
@@ -303,9 +301,9 @@ MissionResult MissionRunner::run() {
     checkpoint_(tracker.time(), result.path_length, meshMap());
   }
   if (result.end_reason.empty() && result.status) {
-    result.end_reason = pathLeft() ? "max_flight_time: " + std::to_string(c.max_flight_time) + " s of flight reached"
-                                   : "max_path_length: " + std::to_string(c.max_path_length) + " m of path reached";
+    result.end_reason = supervisor.limitReached(tracker.time(), result.path_length);
   }
+  result.tally = supervisor.tally();
   result.flight_time = tracker.time();
   result.pose_error = pose_error.stats();
   result.explorer = explorer.stats();

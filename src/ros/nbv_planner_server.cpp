@@ -64,7 +64,8 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       stats_(nh_, "planner/stats", "nbv_planner", config.stats_period),
       feed_(nh_, config.map, config.collision, config.feed, "nbv_planner", &stats_),
       latest_(nh_, "odometry", config.world_frame),
-      explorer_(config.explorer, config.path) {
+      explorer_(config.explorer, config.path),
+      supervisor_(config.supervisorConfig()) {
   if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
   }
@@ -118,7 +119,7 @@ void NbvPlannerServer::onFrontier(const surface_nbv::SurfaceFrontierConstPtr& ms
   frontier_time_ = msg->header.stamp;
   have_frontier_ = frontier_new_ = true;
   stats_.count("frontiers");
-  if (config_.prompt_ticks && state_ == State::kRunning && !leg_is_spin_) tick();
+  if (config_.prompt_ticks && state_ == State::kRunning && !supervisor_.spinning()) tick();
 }
 
 void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
@@ -147,23 +148,36 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
     mission_start_ = odometry_time_;
     have_mission_start_ = true;
   }
-  if (flying && config_.max_flight_time > 0.0 && flightTime() >= config_.max_flight_time) {
-    reason_ = "max_flight_time";
-    char text[96];
-    std::snprintf(text, sizeof(text), "%.1f s of flight reached max_flight_time (%.1f s)", flightTime(),
-                  config_.max_flight_time);
-    message_ = text;
+  if (const std::string limit = flying ? supervisor_.limitReached(flightTime(), path_length_) : ""; !limit.empty()) {
+    const size_t colon = limit.find(": ");
+    reason_ = limit.substr(0, colon);
+    message_ = limit.substr(colon + 2);
     finish();
     return;
   }
-  if (config_.prompt_ticks && state_ == State::kRunning && have_leg_ && !leg_is_spin_ && feed_.mirror().synced() &&
-      odometry_time_ >= leg_end_ + ros::Duration(config_.leg_settle)) {
+  if (config_.prompt_ticks && state_ == State::kRunning && !supervisor_.spinning() && feed_.mirror().synced() &&
+      supervisor_.legEnded(input(odometry_time_))) {
     tick();
   }
 }
 
 double NbvPlannerServer::flightTime() const {
   return have_mission_start_ ? (odometry_time_ - mission_start_).toSec() : 0.0;
+}
+
+SupervisorInput NbvPlannerServer::input(const ros::Time& now) const {
+  SupervisorInput in;
+  in.t = have_mission_start_ ? (now - mission_start_).toSec() : 0.0;
+  in.uav = uav_;
+  in.path_length = path_length_;
+  in.frontier_new = frontier_new_;
+  in.has_target = explorer_.hasTarget();
+  return in;
+}
+
+void NbvPlannerServer::sendLeg(const std::vector<Eigen::Vector4d>& points) {
+  const double duration = publishTrajectory(points);
+  supervisor_.legSent(points.back(), input(sent_at_).t + duration);
 }
 
 void NbvPlannerServer::tick() {
@@ -195,16 +209,13 @@ void NbvPlannerServer::tick() {
     }
     return;
   }
-  if (!spun_) {  // take-off: look around once before the first plan
-    spun_ = true;
-    std::vector<Eigen::Vector4d> spin{uav_};
-    const int steps = std::max(1, static_cast<int>(std::ceil(config_.start_spin / (0.5 * M_PI))));
-    for (int k = 1; k <= steps && config_.start_spin > 0.0; ++k) {
-      spin.emplace_back(uav_.x(), uav_.y(), uav_.z(), uav_.w() + config_.start_spin * k / steps);
-    }
-    if (spin.size() > 1) {
-      leg_end_ = now + ros::Duration(publishTrajectory(spin));
-      have_leg_ = leg_is_spin_ = true;
+  if (!have_mission_start_) mission_start_ = odometry_time_, have_mission_start_ = true;
+  if (!took_off_) {  // take-off: look around once before the first plan
+    took_off_ = true;
+    std::vector<Eigen::Vector4d> spin = supervisor_.takeOff(uav_);
+    if (!spin.empty()) {
+      spin.insert(spin.begin(), uav_);
+      sendLeg(spin);
       reason_ = "take_off_spin";
       message_ = "turning in place before the first plan";
       publishStatus();
@@ -212,43 +223,36 @@ void NbvPlannerServer::tick() {
     }
   }
   double tracking_error = 0.0;
-  if (have_leg_ && !leg_is_spin_ && offTrack(now, &tracking_error)) {
+  if (supervisor_.haveLeg() && !supervisor_.spinning() && offTrack(now, &tracking_error)) {
     stats_.count("legs_off_track");
     ROS_WARN_THROTTLE(5.0, "nbv_planner: the UAV stayed %.1f m from its trajectory for %.1f s (a tracker that refused "
                       "it?): planning the leg again from where it is", tracking_error, config_.off_track_time);
-    have_leg_ = false;
+    supervisor_.legDropped();
     explorer_.legCancelled();
     frontier_new_ = true;  // decide now
   }
-  const bool at_goal = config_.leg_lookahead > 0.0 && !leg_is_spin_ &&
-                       now + ros::Duration(config_.leg_lookahead) >= leg_end_ &&
-                       (uav_.head<3>() - leg_goal_.head<3>()).norm() <= config_.explorer.reach_tolerance &&
-                       std::abs(wrapAngle(uav_.w() - leg_goal_.w())) <= config_.leg_yaw_tolerance;
-  const bool leg_ended = have_leg_ && (now >= leg_end_ + ros::Duration(config_.leg_settle) || at_goal);
-  if (leg_ended && leg_is_spin_) have_leg_ = leg_is_spin_ = false;
-  if (leg_is_spin_) return;
-  const bool recovering = state_ == State::kHovering && (reason_ == "odometry_stale" || reason_ == "map_stale");
-  if (!have_frontier_ || (!frontier_new_ && !leg_ended && !recovering)) {
+  SupervisorInput in = input(now);
+  in.frontier_new = frontier_new_ || (state_ == State::kHovering && (reason_ == "odometry_stale" || reason_ == "map_stale"));
+  const bool leg_ended = supervisor_.legEnded(in);
+  const SupervisorStep step = supervisor_.poll(in);
+  if (supervisor_.spinning()) return;
+  if (step != SupervisorStep::kDecide || !have_frontier_) {
     // Between frontiers: is the current leg still free?
-    if (have_leg_ && feed_.refresh() != MapFeed::Refresh::kUnchanged) {
+    if (supervisor_.haveLeg() && feed_.refresh() != MapFeed::Refresh::kUnchanged) {
       explorer_.mapChanged();
       const ExplorerDecision d = explorer_.checkPath(uav_);
-      if (d.action != ExplorerAction::kContinue) act(d);
+      if (d.action != ExplorerAction::kContinue) supervisor_.record(d), act(d);
       busy_until_ = ros::Time::now();
     }
     return;
   }
   frontier_new_ = false;
-  const ros::WallTime wall0 = ros::WallTime::now();
   if (feed_.refresh() != MapFeed::Refresh::kUnchanged) explorer_.mapChanged();
-  const ExplorerDecision d = explorer_.update(frontier_, uav_, leg_ended && explorer_.hasTarget());
-  if (leg_ended) have_leg_ = false;
+  const ExplorerDecision d = supervisor_.decide(&explorer_, frontier_, in);
   stats_.recordMs(d.timings.total_ms);
   act(d);
   busy_until_ = ros::Time::now();  // after the markers too (the roadmap's edges take time)
-  // What the decisions cost the flight: wall time, and the flight seconds
-  // the UAV hovered at a leg's end until its next leg came.
-  decision_wall_s_.push_back((ros::WallTime::now() - wall0).toSec());
+  // The flight seconds the UAV hovered at a leg's end until its next leg came.
   if (leg_ended) leg_end_wait_s_ += std::max(0.0, (ros::Time::now() - now).toSec());
 }
 
@@ -265,9 +269,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
       std::vector<Eigen::Vector4d> points{uav_};
       points.insert(points.end(), d.path.begin(), d.path.end());
       startAtTheUav(&points);
-      leg_end_ = ros::Time::now() + ros::Duration(publishTrajectory(resamplePath(points, config_.trajectory_spacing)));
-      leg_goal_ = points.back();
-      have_leg_ = true;
+      sendLeg(resamplePath(points, config_.trajectory_spacing));
       state_ = State::kRunning;
       break;
     }
@@ -298,7 +300,7 @@ void NbvPlannerServer::startAtTheUav(std::vector<Eigen::Vector4d>* points) {
 
 bool NbvPlannerServer::cancelLeg() {
   if (have_odometry_) publishTrajectory({currentPose()});
-  have_leg_ = leg_is_spin_ = false;
+  supervisor_.legDropped();
   explorer_.legCancelled();
   return have_odometry_;
 }
@@ -348,21 +350,11 @@ void NbvPlannerServer::writeReport() const {
   json.value("path_length_m", path_length_).value("holds", stats_.get("holds"));
   json.beginObject("uav").value("x", uav_.x()).value("y", uav_.y()).value("z", uav_.z()).value("yaw", uav_.w());
   json.endObject();
-  for (const char* a : {"fly", "hover", "continue", "done"}) {
-    json.value(std::string("decisions_") + a, stats_.get(std::string("decision_") + a));
-  }
+  supervisor_.tally().writeJson(&json);
   json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
   json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
   json.value("lattice_legs", s.lattice_legs);
-  std::vector<double> walls = decision_wall_s_;
-  std::sort(walls.begin(), walls.end());
-  double wall_total = 0.0;
-  for (double w : walls) wall_total += w;
-  json.value("decisions", walls.size()).value("decision_wall_s_total", wall_total);
-  json.value("decision_wall_s_median", walls.empty() ? 0.0 : walls[walls.size() / 2]);
-  json.value("decision_wall_s_p90", walls.empty() ? 0.0 : walls[walls.size() * 9 / 10]);
-  json.value("decision_wall_s_max", walls.empty() ? 0.0 : walls.back());
   json.value("leg_end_wait_s", leg_end_wait_s_);
   json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
   json.value("blacklisted", explorer_.blacklist().size());
@@ -554,6 +546,7 @@ bool NbvPlannerServer::onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   }
   if (before == State::kDone) {
     explorer_.reset();
+    supervisor_.reset();
     have_mission_start_ = false;  // a new mission, a new flight clock
     res.message = "running a new mission on the current map";
   } else {

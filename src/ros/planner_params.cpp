@@ -10,6 +10,15 @@
 
 namespace surface_nbv {
 
+SupervisorConfig PlannerNodeConfig::supervisorConfig() const {
+  SupervisorConfig rules;
+  rules.flight = *this;
+  rules.reach_tolerance = explorer.reach_tolerance;
+  rules.frontier_period = 0.0;
+  rules.leg_settle = leg_settle;
+  return rules;
+}
+
 Status PlannerNodeConfig::validate() const {
   if (Status s = map.validate(); !s) return s;
   if (Status s = explorer.validate(); !s) return s;

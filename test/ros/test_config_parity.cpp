@@ -146,6 +146,16 @@ TEST(ConfigParity, EveryShippedConfigReadsTheSameThroughBothLoaders) {
     EXPECT_DOUBLE_EQ(p.leg_yaw_tolerance, yaml.leg_yaw_tolerance);
     if (mission) EXPECT_DOUBLE_EQ(p.max_flight_time, yaml.max_flight_time);
     EXPECT_DOUBLE_EQ(p.start_spin, yaml.start_spin);
+    // The mission's rules: the same flight keys and reach, the drivers'
+    // own ways of seeing a leg end and a frontier come (mission_supervisor.h).
+    const SupervisorConfig node_rules = p.supervisorConfig(), mission_rules = yaml.supervisorConfig();
+    EXPECT_DOUBLE_EQ(node_rules.flight.speed, mission_rules.flight.speed);
+    EXPECT_DOUBLE_EQ(node_rules.flight.leg_lookahead, mission_rules.flight.leg_lookahead);
+    EXPECT_DOUBLE_EQ(node_rules.flight.start_spin, mission_rules.flight.start_spin);
+    if (mission) EXPECT_DOUBLE_EQ(node_rules.flight.max_flight_time, mission_rules.flight.max_flight_time);
+    EXPECT_DOUBLE_EQ(node_rules.reach_tolerance, mission_rules.reach_tolerance);
+    EXPECT_DOUBLE_EQ(node_rules.frontier_period, 0.0);
+    EXPECT_DOUBLE_EQ(mission_rules.frontier_period, yaml.frontier_period);
     EXPECT_EQ(p.path.iteration_budget, yaml.path.iteration_budget);
     EXPECT_DOUBLE_EQ(p.path.time_budget, yaml.path.time_budget);
     EXPECT_DOUBLE_EQ(p.map.voxel_size, yaml.tsdf.voxel_size);

@@ -17,6 +17,7 @@
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/planning/cluster_graph.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/sim/depth_camera.h"
 #include "surface_nbv/sim/pose_error.h"
@@ -27,26 +28,8 @@
 
 namespace surface_nbv {
 
-// The reference a mission flies its legs at and when it ends: keys of the
-// mission section, read by nbv_mission and nbv_planner alike (MissionConfig
-// and PlannerNodeConfig are FlightConfigs), checked here once.
-struct MissionFlightConfig {
-  double speed = 0.5;              // reference speed [m/s] (the paper's), at most the tracker's v_max
-  double yaw_rate = 1.0;           // reference yaw rate [rad/s], at most the tracker's limit
-  // A leg ends (and the next is planned) once its reference has less than
-  // this many seconds left and the UAV is within the explorer's
-  // reach_tolerance of its end, facing its yaw to within leg_yaw_tolerance:
-  // the UAV flies on instead of stopping at every viewpoint. 0: a leg ends
-  // when its reference does.
-  double leg_lookahead = 0.0;      // s
-  double leg_yaw_tolerance = 0.35; // rad
-  double max_flight_time = 0.0;    // the mission ends there [s of flight]; 0: no limit
-  double start_spin = 6.2832;      // yaw turned in place before the first plan [rad]
-
-  // Names the first bad key ("speed expected in (0, 20] m/s").
-  Status validate() const;
-};
-
+// MissionFlightConfig (the mission section's flight keys) is the
+// supervisor's (planning/mission_supervisor.h).
 void readFlightKeys(ParamSource& mission, MissionFlightConfig* c);
 void readTsdfKeys(ParamSource& nbv, TsdfConfig* c);
 void readCameraKeys(ParamSource& nbv, CameraConfig* c);

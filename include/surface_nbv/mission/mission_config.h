@@ -81,6 +81,9 @@ struct MissionConfig : MissionFlightConfig {
 
   // Names the first bad key.
   Status validate() const;
+  // The mission's rules as nbv_mission applies them (MissionRunner): a
+  // decision every frontier_period, a leg ended when the tracker says so.
+  SupervisorConfig supervisorConfig() const;
 };
 
 // Reads `file` over the defaults of *config. Error (naming file and key) on

@@ -22,6 +22,7 @@
 #include "surface_nbv/map/mesh_layer.h"
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/sim/raycast_scene.h"
 #include "surface_nbv/sim/triangle_mesh.h"
 
@@ -65,6 +66,7 @@ struct MissionResult {
   PoseErrorStats pose_error;            // the estimate against the truth (MissionConfig::pose_error)
   PoseErrorStats fused_pose_error;      // the poses frames were fused at against the truth
   size_t yaw_corrections = 0;           // frames whose walls corrected the heading (MissionConfig::manhattan_yaw)
+  SupervisorTally tally;                // the decisions and legs, as MissionSupervisor counted them
 };
 
 class MissionRunner {
@@ -92,6 +94,10 @@ class MissionRunner {
   // truth's unobserved probe points in view (oracle_gain.h) instead of |C_q|.
   void setOracleGain(bool on) { oracle_gain_ = on; }
 
+  // Every call the mission makes to its MissionSupervisor is appended to
+  // `calls` (not owned), to be replayed (test_mission_supervisor).
+  void setSupervisorRecording(std::vector<SupervisorCall>* calls) { recording_ = calls; }
+
   MissionResult run();
   // The map after run().
   const TsdfMap& map() const;
@@ -111,6 +117,7 @@ class MissionRunner {
   bool oracle_gain_ = false;
   double checkpoint_period_ = 0.0;
   Checkpoint checkpoint_;
+  std::vector<SupervisorCall>* recording_ = nullptr;
 };
 
 }  // namespace surface_nbv

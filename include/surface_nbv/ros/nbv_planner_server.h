@@ -2,11 +2,13 @@
 // ROS topics. It keeps a MapMirror of tsdf/update (asking the mapper for a
 // snapshot on a gap) with a CollisionMap, the last surface/frontier and the
 // last odometry, and on each tick (replan_rate, wall clock; with prompt_ticks
-// also on each frontier and on the odometry that shows the leg ended) while RUNNING:
+// also on each frontier and on the odometry that shows the leg ended) while
+// RUNNING carries out what its MissionSupervisor (planning/mission_supervisor.h,
+// the rules nbv_mission's loop follows too) says:
 //   - turns start_spin in place once at the first start (to see around),
 //   - hands a new frontier, or the end of the current leg (its last point's
-//     time plus leg_settle, ROS time), to Explorer::update and acts on the
-//     decision: a new leg -> planner/trajectory (MultiDOFJointTrajectory at
+//     time plus leg_settle, ROS time, or leg_lookahead's rule), to
+//     Explorer::update and acts on the decision: a new leg -> planner/trajectory (MultiDOFJointTrajectory at
 //     `speed`, yaw timed by `yaw_rate`) and planner/path; hover -> a hold
 //     trajectory at the current pose (HOVERING); done -> hold, DONE, the
 //     mission report, the map and mesh saved through the mapper's services,
@@ -45,6 +47,7 @@
 
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/ros/latest_odometry.h"
 #include "surface_nbv/ros/map_feed.h"
 #include "surface_nbv/ros/planner_params.h"
@@ -80,6 +83,10 @@ class NbvPlannerServer {
   void finish();
   // s of odometry time since the first odometry of the mission, 0 before it.
   double flightTime() const;
+  // What the supervisor is told at ROS time `now`.
+  SupervisorInput input(const ros::Time& now) const;
+  // Publishes a leg (or the take-off spin) from its first point and tells the supervisor.
+  void sendLeg(const std::vector<Eigen::Vector4d>& points);
   // Publishes the points as a trajectory from now; returns its duration [s].
   double publishTrajectory(const std::vector<Eigen::Vector4d>& points);
   // The newest odometry pose: latest_'s when it is newer than uav_.
@@ -102,6 +109,7 @@ class NbvPlannerServer {
   MapFeed feed_;
   LatestOdometry latest_;
   Explorer explorer_;
+  MissionSupervisor supervisor_;  // take-off, leg ends, decisions, limits, tally (mission_supervisor.h)
   ros::Subscriber frontier_sub_, odometry_sub_;
   ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;
   ros::ServiceServer start_srv_, stop_srv_, replan_srv_;
@@ -114,20 +122,15 @@ class NbvPlannerServer {
   Eigen::Vector4d uav_ = Eigen::Vector4d::Zero();  // x, y, z, yaw
   bool have_odometry_ = false;
   ros::Time odometry_time_, mission_start_;
-  std::vector<double> decision_wall_s_;  // wall time of each decision on a frontier (report)
   double leg_end_wait_s_ = 0.0;           // flight s hovered at leg ends while the next leg was decided
   ros::Time busy_until_;             // ROS time the last decision and its messages were done (stale checks wait a timeout past it)
   bool have_mission_start_ = false;  // mission_start_ is the mission's first odometry stamp
   double path_length_ = 0.0;
-  bool spun_ = false;              // the take-off spin was sent
-  bool have_leg_ = false;          // a trajectory is being flown
-  bool leg_is_spin_ = false;
-  ros::Time leg_end_;
+  bool took_off_ = false;          // the take-off was asked for (once per node: not again after ~start)
   std::vector<std::pair<double, Eigen::Vector3d>> sent_;  // last trajectory: time from its stamp, position
   ros::Time sent_at_, off_track_since_;
   bool off_track_ = false;
   ros::WallTime roadmap_marker_wall_;  // when publishMarkers last copied the roadmap (0: never)
-  Eigen::Vector4d leg_goal_ = Eigen::Vector4d::Zero();  // the leg's last point
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
 };

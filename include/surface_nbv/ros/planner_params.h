@@ -83,6 +83,9 @@ struct PlannerNodeConfig : MissionFlightConfig {
 
   // Names the first bad key, e.g. "speed expected in (0, 20] m/s".
   Status validate() const;
+  // The mission's rules as nbv_planner applies them: a decision on every new
+  // frontier, a leg ended leg_settle after its reference (no word from the tracker).
+  SupervisorConfig supervisorConfig() const;
 };
 
 Status loadPlannerParams(const ros::NodeHandle& priv, PlannerNodeConfig* config);
