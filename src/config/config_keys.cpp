@@ -76,7 +76,6 @@ void readTrackerKeys(ParamSource& trk, TrackerSimConfig* c) {
   trk.get("a_max", &c->model.a_max);
   trk.get("yaw_rate_max", &c->model.yaw_rate_max);
   trk.get("jerk_max", &c->mpc.jerk_max);
-  c->mpcUsesModelLimits();
 }
 
 void readExplorerKeys(ParamSource& m, ExplorerConfig* e) {

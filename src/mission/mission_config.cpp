@@ -37,7 +37,7 @@ Status MissionConfig::validate() const {
   }
   if (Status s = MissionFlightConfig::validate(); !s) return Status::Error("mission/" + s.message());
   auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (Status s = checkReferenceWithinLimits(speed, yaw_rate, tracker.mpc.v_max, tracker.mpc.yaw_rate_max, "mission/",
+  if (Status s = checkReferenceWithinLimits(speed, yaw_rate, tracker.model.v_max, tracker.model.yaw_rate_max, "mission/",
                                             "tracker/");
       !s) {
     return s;

@@ -32,12 +32,12 @@ void shiftRows(Eigen::MatrixXd* m, int begin, int count) {
   m->middleRows(begin, count - 1) = tail;
 }
 
-UavCommand brakeCommand(const UavState& state, const MpcConfig& config, const AxisDiscretization& d) {
+UavCommand brakeCommand(const UavState& state, const UavModelConfig& model, const AxisDiscretization& d) {
   UavCommand u;
   if (!state.v_W.allFinite()) return u;
   for (int i = 0; i < 3; ++i) {
     const double stop = d.beta > 0.0 ? -d.alpha * state.v_W[i] / d.beta : 0.0;
-    u.a_W[i] = clampAcceleration(state.v_W[i], stop, config.v_max, config.a_max, d);
+    u.a_W[i] = clampAcceleration(state.v_W[i], stop, model.v_max, model.a_max, d);
   }
   return u;
 }
@@ -59,9 +59,6 @@ Status MpcConfig::validate() const {
   if (!nonNegative(r_yaw_rate)) return Status::Error("r_yaw_rate expected >= 0");
   if (!nonNegative(r_yaw_rate_change)) return Status::Error("r_yaw_rate_change expected >= 0");
   if (r_yaw_rate + r_yaw_rate_change <= 0.0) return Status::Error("r_yaw_rate or r_yaw_rate_change expected > 0");
-  if (!std::isfinite(v_max) || v_max <= 0.0) return Status::Error("v_max expected > 0");
-  if (!std::isfinite(a_max) || a_max <= 0.0) return Status::Error("a_max expected > 0");
-  if (!std::isfinite(yaw_rate_max) || yaw_rate_max <= 0.0) return Status::Error("yaw_rate_max expected > 0");
   if (!std::isfinite(jerk_max) || jerk_max <= 0.0) return Status::Error("jerk_max expected > 0");
   if (Status s = qp.validate(); !s) return Status::Error("qp: " + s.message());
   return Status::Ok();
@@ -85,7 +82,7 @@ const char* toString(MpcStatus status) {
 }
 
 MpcTracker::MpcTracker(const MpcConfig& config, const UavModelConfig& model)
-    : config_(config), drag_(model.drag), step_(discretizeAxis(model.drag, config.dt)) {
+    : config_(config), model_(model), step_(discretizeAxis(model.drag, config.dt)) {
   const int n = config_.horizon;
   phi_p_.setZero(n, 2);
   phi_v_.setZero(n, 2);
@@ -144,7 +141,7 @@ MpcResult MpcTracker::solve(const UavState& state, const MpcReference& reference
   if (!state.allFinite()) {
     result.status = MpcStatus::kInvalidInput;
     result.message = "UAV state is not finite";
-    result.command = brakeCommand(state, config_, step_);
+    result.command = brakeCommand(state, model_, step_);
     result.predicted_p_W = Eigen::Matrix3Xd::Zero(3, n);
     resetWarmStart();
     return result;
@@ -155,7 +152,7 @@ MpcResult MpcTracker::solve(const UavState& state, const MpcReference& reference
     result.message = "reference has a non-finite value or not " + std::to_string(n) + " steps: holding pose";
     ref = MpcReference::hold(state.p_W, state.yaw, n);
   }
-  const double a_max = config_.a_max, v_max = config_.v_max, r_max = config_.yaw_rate_max;
+  const double a_max = model_.a_max, v_max = model_.v_max, r_max = model_.yaw_rate_max;
   const Eigen::Vector3d a_prev = previous.a_W.allFinite() ? previous.a_W : Eigen::Vector3d::Zero();
   const double r_prev = std::isfinite(previous.yaw_rate) ? previous.yaw_rate : 0.0;
 
@@ -163,7 +160,7 @@ MpcResult MpcTracker::solve(const UavState& state, const MpcReference& reference
   Eigen::Matrix<double, 2, 3> x0;
   x0.row(0) = state.p_W.transpose();
   x0.row(1) = state.v_W.transpose();
-  const Eigen::MatrixXd a_ref = (drag_ * ref.v_W.transpose()).cwiseMax(-a_max).cwiseMin(a_max);
+  const Eigen::MatrixXd a_ref = (model_.drag * ref.v_W.transpose()).cwiseMax(-a_max).cwiseMin(a_max);
   Eigen::MatrixXd q = grad_p_ * (phi_p_ * x0 - ref.p_W.transpose()) + grad_v_ * (phi_v_ * x0 - ref.v_W.transpose()) -
                       config_.r_acceleration * a_ref;
   q.row(0) -= config_.r_acceleration_change * a_prev.transpose();
@@ -213,7 +210,7 @@ MpcResult MpcTracker::solve(const UavState& state, const MpcReference& reference
     result.status = MpcStatus::kInvalidInput;
     result.message = std::string("QP failed (position: ") + toString(position_status) + ", yaw: " +
                      toString(yaw_status) + "): braking";
-    result.command = brakeCommand(state, config_, step_);
+    result.command = brakeCommand(state, model_, step_);
     result.predicted_p_W = state.p_W.replicate(1, n);
     resetWarmStart();
     return result;

@@ -18,9 +18,6 @@ Status TrackerSimConfig::validate() const {
   if (!std::isfinite(start_time) || std::abs(start_time) > 1e9) return Status::Error("start_time expected finite");
   if (Status s = model.validate(); !s) return Status::Error("model: " + s.message());
   if (Status s = mpc.validate(); !s) return Status::Error("mpc: " + s.message());
-  if (mpc.v_max > model.v_max) return Status::Error("mpc: v_max expected <= model v_max");
-  if (mpc.a_max > model.a_max) return Status::Error("mpc: a_max expected <= model a_max");
-  if (mpc.yaw_rate_max > model.yaw_rate_max) return Status::Error("mpc: yaw_rate_max expected <= model yaw_rate_max");
   return Status::Ok();
 }
 

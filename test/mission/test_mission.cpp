@@ -219,17 +219,16 @@ TEST(MissionConfig, RefusesUnknownKeysWrongTypesAndMissingFiles) {
   EXPECT_NE(c.validate().message().find("mission/start"), std::string::npos);
 }
 
-// The tracker section sets the simulated UAV's limits for the model and its
-// MPC alike, and the legs' reference may not ask for more than they allow.
+// The tracker section sets the simulated UAV's limits (the model's, which its
+// MPC plans with), and the legs' reference may not ask for more than they allow.
 TEST(MissionConfig, TrackerLimitsBoundTheLegsReference) {
   MissionConfig c;
   ASSERT_TRUE(loadMissionConfig(writeTemp("yaw2.yaml", "tracker:\n  yaw_rate_max: 2.0\n  v_max: 0.8\n"
                                                        "mission:\n  yaw_rate: 2.0\n"), &c).ok());
   EXPECT_DOUBLE_EQ(c.tracker.model.yaw_rate_max, 2.0);
-  EXPECT_DOUBLE_EQ(c.tracker.mpc.yaw_rate_max, 2.0);
   EXPECT_DOUBLE_EQ(c.tracker.model.v_max, 0.8);
-  EXPECT_DOUBLE_EQ(c.tracker.mpc.v_max, 0.8);
-  EXPECT_DOUBLE_EQ(c.tracker.mpc.a_max, c.tracker.model.a_max);
+  EXPECT_DOUBLE_EQ(c.tracker.model.a_max, UavModelConfig().a_max);
+  EXPECT_DOUBLE_EQ(MpcTracker(c.tracker.mpc, c.tracker.model).model().v_max, 0.8);
   EXPECT_TRUE(c.validate().ok()) << c.validate().message();
   c = MissionConfig();
   ASSERT_TRUE(loadMissionConfig(writeTemp("fast_yaw.yaml", "mission:\n  yaw_rate: 2.0\n"), &c).ok());

@@ -136,7 +136,7 @@ TEST(SceneDefaults, LargerScenesGetTable1sColumns) {
   EXPECT_DOUBLE_EQ(statue.explorer.head_vertical_scale, 2.0);
   EXPECT_EQ(statue.path.iteration_budget, 3000);
   EXPECT_DOUBLE_EQ(statue.surface.approach_range_fraction, 0.9);
-  EXPECT_DOUBLE_EQ(statue.tracker.mpc.v_max, 1.0);
+  EXPECT_DOUBLE_EQ(statue.tracker.model.v_max, 1.0);
   EXPECT_DOUBLE_EQ(statue.max_flight_time, MissionConfig().max_flight_time);
   EXPECT_EQ(d.reference_config, kPackage + "/config/statue.yaml");
   EXPECT_TRUE(statue.validate().ok()) << statue.validate().message();

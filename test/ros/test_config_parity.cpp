@@ -170,7 +170,9 @@ TEST(ConfigParity, EveryShippedConfigReadsTheSameThroughBothLoaders) {
     EXPECT_DOUBLE_EQ(s.approach_range_fraction, yaml.surface.approach_range_fraction);
     if (mission) EXPECT_DOUBLE_EQ(ros.extractor_config.frontier_period, yaml.frontier_period);
     EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.v_max, yaml.tracker.model.v_max);
-    EXPECT_DOUBLE_EQ(ros.tracker_config.sim.mpc.yaw_rate_max, yaml.tracker.mpc.yaw_rate_max);
+    EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.yaw_rate_max, yaml.tracker.model.yaw_rate_max);
+    EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.a_max, yaml.tracker.model.a_max);
+    EXPECT_DOUBLE_EQ(ros.tracker_config.sim.mpc.jerk_max, yaml.tracker.mpc.jerk_max);
   }
 }
 

@@ -421,9 +421,7 @@ TEST(ParamLoader, TrackerLimitsFromTheTrackerSectionThenThePrivateOnes) {
   Status s = loadTrackerParams(ros::NodeHandle(priv), &c);
   ASSERT_TRUE(s.ok()) << s.message();
   EXPECT_DOUBLE_EQ(c.sim.model.yaw_rate_max, 2.0);
-  EXPECT_DOUBLE_EQ(c.sim.mpc.yaw_rate_max, 2.0);
   EXPECT_DOUBLE_EQ(c.sim.model.v_max, 0.6);
-  EXPECT_DOUBLE_EQ(c.sim.mpc.v_max, 0.6);
   ros::param::set(shared + "/yaw_rate", 2.0);
   c = TrackerNodeConfig();
   s = loadTrackerParams(ros::NodeHandle(priv), &c);

@@ -88,7 +88,7 @@ TEST(MpcTracker, MatchesUnconstrainedClosedForm) {
       const Eigen::VectorXd best = quadraticMinimiser(c.horizon, [&](const Eigen::VectorXd& a) {
         return axisCost(c, model.drag, state.p_W[i], state.v_W[i], previous.a_W[i], p_ref, v_ref, a);
       });
-      ASSERT_LT(best.cwiseAbs().maxCoeff(), 0.5 * c.a_max) << "the limits must stay inactive";
+      ASSERT_LT(best.cwiseAbs().maxCoeff(), 0.5 * model.a_max) << "the limits must stay inactive";
       EXPECT_NEAR(result.command.a_W[i], best[0], tolerance) << "axis " << i << (tight ? " tight" : " default");
     }
     // Yaw: a single integrator with a constant reference (rate reference 0).
@@ -109,47 +109,55 @@ TEST(MpcTracker, MatchesUnconstrainedClosedForm) {
 
 // Random states (some beyond the velocity box) and references (some 100 m
 // away, some non-finite): every command is finite, inside the acceleration and
-// yaw-rate boxes, and keeps the next velocity inside the box when it can.
+// yaw-rate boxes, and keeps the next velocity inside the box when it can. The
+// boxes are the model's (the MPC has none of its own): the default UAV's and a
+// slower one's.
 TEST(MpcTracker, CommandsAlwaysInsideLimits) {
-  MpcConfig c;
-  UavModelConfig model;
-  MpcTracker mpc(c, model);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const AxisDiscretization d = discretizeAxis(model.drag, c.dt);
-  UavCommand previous;
-  for (int trial = 0; trial < 500; ++trial) {
-    UavState state;
-    state.p_W = 10 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
-    state.v_W = (trial % 7 == 0 ? 3.0 : 1.0) * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
-    state.yaw = M_PI * unit(rng);
-    const double reach = trial % 3 == 0 ? 100.0 : 2.0;
-    MpcReference ref = MpcReference::hold(state.p_W + reach * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)),
-                                          1e4 * unit(rng), c.horizon);
-    ref.v_W.setConstant(5.0 * unit(rng));
-    if (trial % 11 == 0) ref.p_W(1, 4) = NAN;
-    const MpcResult r = mpc.solve(state, ref, previous);
-    ASSERT_TRUE(r.command.a_W.allFinite() && std::isfinite(r.command.yaw_rate));
-    ASSERT_LE(r.command.a_W.cwiseAbs().maxCoeff(), c.a_max);
-    ASSERT_LE(std::abs(r.command.yaw_rate), c.yaw_rate_max);
-    for (int i = 0; i < 3; ++i) {
-      const double v_next = d.alpha * state.v_W[i] + d.beta * r.command.a_W[i];
-      if (std::abs(state.v_W[i]) <= c.v_max) {
-        ASSERT_LE(std::abs(v_next), c.v_max + 1e-12);
-      } else {
-        ASSERT_LT(std::abs(v_next), std::abs(state.v_W[i]));  // braking towards the box
+  UavModelConfig slow;
+  slow.v_max = 0.6;
+  slow.a_max = 0.8;
+  slow.yaw_rate_max = 0.4;
+  for (const UavModelConfig& model : {UavModelConfig(), slow}) {
+    MpcConfig c;
+    MpcTracker mpc(c, model);
+    EXPECT_DOUBLE_EQ(mpc.model().v_max, model.v_max);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const AxisDiscretization d = discretizeAxis(model.drag, c.dt);
+    UavCommand previous;
+    for (int trial = 0; trial < 500; ++trial) {
+      UavState state;
+      state.p_W = 10 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+      state.v_W = (trial % 7 == 0 ? 3.0 : 1.0) * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+      state.yaw = M_PI * unit(rng);
+      const double reach = trial % 3 == 0 ? 100.0 : 2.0;
+      MpcReference ref = MpcReference::hold(state.p_W + reach * Eigen::Vector3d(unit(rng), unit(rng), unit(rng)),
+                                            1e4 * unit(rng), c.horizon);
+      ref.v_W.setConstant(5.0 * unit(rng));
+      if (trial % 11 == 0) ref.p_W(1, 4) = NAN;
+      const MpcResult r = mpc.solve(state, ref, previous);
+      ASSERT_TRUE(r.command.a_W.allFinite() && std::isfinite(r.command.yaw_rate));
+      ASSERT_LE(r.command.a_W.cwiseAbs().maxCoeff(), model.a_max);
+      ASSERT_LE(std::abs(r.command.yaw_rate), model.yaw_rate_max);
+      for (int i = 0; i < 3; ++i) {
+        const double v_next = d.alpha * state.v_W[i] + d.beta * r.command.a_W[i];
+        if (std::abs(state.v_W[i]) <= model.v_max) {
+          ASSERT_LE(std::abs(v_next), model.v_max + 1e-12);
+        } else {
+          ASSERT_LT(std::abs(v_next), std::abs(state.v_W[i]));  // braking towards the box
+        }
       }
+      if (trial % 11 == 0) {
+        EXPECT_EQ(r.status, MpcStatus::kInvalidInput);
+      }
+      previous = r.command;
     }
-    if (trial % 11 == 0) {
-      EXPECT_EQ(r.status, MpcStatus::kInvalidInput);
-    }
-    previous = r.command;
+    UavState broken;
+    broken.v_W.x() = NAN;
+    const MpcResult r = mpc.solve(broken, MpcReference::hold(Eigen::Vector3d::Zero(), 0, c.horizon), previous);
+    EXPECT_EQ(r.status, MpcStatus::kInvalidInput);
+    EXPECT_TRUE(r.command.a_W.allFinite());
   }
-  UavState broken;
-  broken.v_W.x() = NAN;
-  const MpcResult r = mpc.solve(broken, MpcReference::hold(Eigen::Vector3d::Zero(), 0, c.horizon), previous);
-  EXPECT_EQ(r.status, MpcStatus::kInvalidInput);
-  EXPECT_TRUE(r.command.a_W.allFinite());
 }
 
 // The QP's predicted velocities honour the box (the constraint is in the
@@ -167,6 +175,6 @@ TEST(MpcTracker, PredictionRespectsVelocityBox) {
   for (int k = 1; k < c.horizon; ++k) {
     max_speed = std::max(max_speed, ((p.col(k) - p.col(k - 1)) / c.dt).cwiseAbs().maxCoeff());
   }
-  EXPECT_LE(max_speed, c.v_max * 1.01);
-  EXPECT_GT(max_speed, c.v_max * 0.9);
+  EXPECT_LE(max_speed, model.v_max * 1.01);
+  EXPECT_GT(max_speed, model.v_max * 0.9);
 }

@@ -73,8 +73,8 @@ TEST(TrackerSim, ConfigNamesBadKey) {
   c.control_period = 0.015;
   EXPECT_NE(c.validate().message().find("control_period"), std::string::npos);
   c = TrackerSimConfig();
-  c.mpc.v_max = 2.0;
-  EXPECT_NE(c.validate().message().find("mpc: v_max"), std::string::npos);
+  c.mpc.jerk_max = 0;
+  EXPECT_NE(c.validate().message().find("mpc: jerk_max"), std::string::npos);
   c = TrackerSimConfig();
   c.model.a_max = 0;
   EXPECT_NE(c.validate().message().find("model: a_max"), std::string::npos);

@@ -38,7 +38,7 @@ void readSurfaceKeys(ParamSource& nbv, SurfaceConfig* c);
 // lambda_tc, lambda_ic (eq. 5).
 void readUtilityKeys(ParamSource& nbv, ClusterGraphConfig* c);
 void readSceneKeys(ParamSource& depth_sim, SceneConfig* c);
-// drag, v_max, a_max, yaw_rate_max, jerk_max; the MPC then plans with the model's limits.
+// drag, v_max, a_max, yaw_rate_max (the model's, which the MPC plans with), jerk_max (the MPC's).
 void readTrackerKeys(ParamSource& tracker, TrackerSimConfig* c);
 // The explorer's keys (match_radius ... tour_objective, gaze, gaze_step, gaze_min_ises).
 void readExplorerKeys(ParamSource& mission, ExplorerConfig* c);

@@ -1,8 +1,9 @@
 // Linear MPC for the 4-DOF UAV model (after Kamel et al. 2017): per axis a
 // condensed QP over the N accelerations of the horizon (the three position
 // axes share one Hessian and are solved together), and one QP over the N yaw
-// rates. Box limits on velocity, acceleration, jerk (the change of the
-// acceleration command per step, from the previous command) and yaw rate are
+// rates. Box limits on velocity, acceleration and yaw rate (the UAV model's,
+// UavModelConfig: the MPC has no limits of its own) and on jerk (the change of
+// the acceleration command per step, from the previous command) are
 // constraints of the QP (AdmmQpSolver); the applied input is projected exactly
 // onto them (velocity and acceleration win over jerk when they disagree).
 // Cost per step k = 1..N (k = N weighted by q_terminal):
@@ -31,9 +32,6 @@ struct MpcConfig {
   double q_yaw = 10.0;
   double r_yaw_rate = 0.1;
   double r_yaw_rate_change = 1.0;
-  double v_max = 1.0;                   // m/s per axis; <= the model's
-  double a_max = 1.5;                   // m/s^2 per axis; <= the model's
-  double yaw_rate_max = 1.0;            // rad/s; <= the model's
   double jerk_max = 5.0;                // m/s^3 per axis: |a_k - a_k-1| <= jerk_max dt
   QpSettings qp;
 
@@ -61,7 +59,7 @@ enum class MpcStatus {
 const char* toString(MpcStatus status);
 
 struct MpcResult {
-  UavCommand command;               // finite and inside the MPC's limits, always
+  UavCommand command;               // finite and inside the model's limits, always
   MpcStatus status = MpcStatus::kSolved;
   int iterations = 0;               // ADMM iterations, position + yaw
   Eigen::Matrix3Xd predicted_p_W;   // N predicted positions (for display)
@@ -70,7 +68,8 @@ struct MpcResult {
 
 class MpcTracker {
  public:
-  // Preconditions: config.validate() and model.validate() pass.
+  // Preconditions: config.validate() and model.validate() pass. Plans with
+  // the model's drag and its limits (v_max, a_max, yaw_rate_max).
   MpcTracker(const MpcConfig& config, const UavModelConfig& model);
 
   // One control step from `state`; `previous` is the command applied so far.
@@ -80,11 +79,13 @@ class MpcTracker {
   void resetWarmStart();
 
   const MpcConfig& config() const { return config_; }
+  // The model planned with, whose limits bound every command.
+  const UavModelConfig& model() const { return model_; }
   int horizon() const { return config_.horizon; }
 
  private:
   MpcConfig config_;
-  double drag_;
+  UavModelConfig model_;
   AxisDiscretization step_;
   // Position: v = Phi_v x0 + Gamma_v U and p = Phi_p x0 + Gamma_p U (x0 = [p0, v0]).
   Eigen::MatrixXd phi_p_, phi_v_, gamma_p_, gamma_v_;

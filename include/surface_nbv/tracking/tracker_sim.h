@@ -20,17 +20,11 @@ struct TrackerSimConfig {
   double control_period = 0.1;       // s, a whole multiple of sim_dt
   double max_start_distance = 2.0;   // m, farther first points are refused
   double start_time = 0.0;           // s, the clock at step 0
+  // The UAV's limits (v_max, a_max, yaw_rate_max), which the MPC plans with.
   UavModelConfig model;
   MpcConfig mpc;
 
-  // The MPC plans with the model's limits (v_max, a_max, yaw_rate_max): what
-  // nbv_mission and mpc_tracker do after reading the model's.
-  void mpcUsesModelLimits() {
-    mpc.v_max = model.v_max;
-    mpc.a_max = model.a_max;
-    mpc.yaw_rate_max = model.yaw_rate_max;
-  }
-  // Names the first bad key; also refuses MPC limits above the model's.
+  // Names the first bad key.
   Status validate() const;
 };
 
