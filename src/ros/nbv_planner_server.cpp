@@ -1,54 +1,24 @@
 #include "surface_nbv/ros/nbv_planner_server.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <utility>
 
 #include <nav_msgs/Path.h>
-#include <filesystem>
-#include <fstream>
+#include <trajectory_msgs/MultiDOFJointTrajectory.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/planning/leg_start.h"
 #include "surface_nbv/ros/frontier_conversions.h"
-#include "surface_nbv/util/angles.h"
+#include "surface_nbv/ros/planner_messages.h"
 #include "surface_nbv/util/json_writer.h"
-#include <trajectory_msgs/MultiDOFJointTrajectory.h>
-#include <tf2_eigen/tf2_eigen.h>
-#include <visualization_msgs/MarkerArray.h>
-
 
 namespace surface_nbv {
 namespace {
-
-geometry_msgs::Quaternion yawQuaternion(double yaw) {
-  geometry_msgs::Quaternion q;
-  q.w = std::cos(0.5 * yaw);
-  q.z = std::sin(0.5 * yaw);
-  return q;
-}
-
-visualization_msgs::Marker lineStrip(const std_msgs::Header& header, const std::string& ns,
-                                     const std::vector<Eigen::Vector4d>& points, float r, float g, float b,
-                                     int type = visualization_msgs::Marker::LINE_STRIP) {
-  visualization_msgs::Marker m;
-  m.header = header;
-  m.ns = ns;
-  m.id = 0;
-  m.type = points.empty() ? visualization_msgs::Marker::LINE_STRIP : type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = 0.1;
-  m.color.r = r;
-  m.color.g = g;
-  m.color.b = b;
-  m.color.a = 1.0f;
-  for (const Eigen::Vector4d& p : points) m.points.push_back(tf2::toMsg(Eigen::Vector3d(p.head<3>())));
-  return m;
-}
 
 // Wall seconds between two copies of the roadmap into planner/markers.
 constexpr double kRoadmapMarkerPeriod = 5.0;
@@ -65,7 +35,8 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       feed_(nh_, config.map, config.collision, config.feed, "nbv_planner", &stats_),
       latest_(nh_, "odometry", config.world_frame),
       explorer_(config.explorer, config.path),
-      supervisor_(config.supervisorConfig()) {
+      supervisor_(config.supervisorConfig()),
+      monitor_(config.max_tracking_error, config.off_track_time) {
   if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
   }
@@ -223,7 +194,8 @@ void NbvPlannerServer::tick() {
     }
   }
   double tracking_error = 0.0;
-  if (supervisor_.haveLeg() && !supervisor_.spinning() && offTrack(now, &tracking_error)) {
+  if (supervisor_.haveLeg() && !supervisor_.spinning() &&
+      monitor_.offTrack((now - sent_at_).toSec(), currentPose().head<3>(), &tracking_error)) {
     stats_.count("legs_off_track");
     ROS_WARN_THROTTLE(5.0, "nbv_planner: the UAV stayed %.1f m from its trajectory for %.1f s (a tracker that refused "
                       "it?): planning the leg again from where it is", tracking_error, config_.off_track_time);
@@ -369,81 +341,21 @@ void NbvPlannerServer::writeReport() const {
 }
 
 double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points) {
-  trajectory_msgs::MultiDOFJointTrajectory trajectory;
-  trajectory.header.stamp = ros::Time::now();
-  trajectory.header.frame_id = config_.world_frame;
-  trajectory.joint_names = {"base_link"};
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = config_.world_frame;
   nav_msgs::Path path;
-  path.header = trajectory.header;
-  double t = 0.0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector4d& p = points[i];
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    if (i > 0) {
-      const Eigen::Vector4d& a = points[i - 1];
-      const double dt = std::max((p.head<3>() - a.head<3>()).norm() / config_.speed,
-                                 std::abs(wrapAngle(p.w() - a.w())) / config_.yaw_rate);
-      t += std::max(dt, 1e-3);
-    }
-    if (i + 1 < points.size()) {
-      const Eigen::Vector3d step = points[i + 1].head<3>() - p.head<3>();
-      if (step.norm() > 1e-9) v = config_.speed * step.normalized();
-    }
-    trajectory_msgs::MultiDOFJointTrajectoryPoint point;
-    geometry_msgs::Transform tf;
-    tf.translation.x = p.x();
-    tf.translation.y = p.y();
-    tf.translation.z = p.z();
-    tf.rotation = yawQuaternion(p.w());
-    point.transforms.push_back(tf);
-    geometry_msgs::Twist twist;
-    twist.linear.x = v.x();
-    twist.linear.y = v.y();
-    twist.linear.z = v.z();
-    point.velocities.push_back(twist);
-    point.time_from_start = ros::Duration(t);
-    trajectory.points.push_back(point);
-    geometry_msgs::PoseStamped pose;
-    pose.header = trajectory.header;
-    pose.pose.position = tf2::toMsg(Eigen::Vector3d(p.head<3>()));
-    pose.pose.orientation = tf.rotation;
-    path.poses.push_back(pose);
-  }
+  const trajectory_msgs::MultiDOFJointTrajectory trajectory =
+      trajectoryMsg(header, points, config_.speed, config_.yaw_rate, &path);
   trajectory_pub_.publish(trajectory);
   path_pub_.publish(path);
-  sent_.clear();
+  std::vector<std::pair<double, Eigen::Vector3d>> reference;
   for (size_t i = 0; i < points.size(); ++i) {
-    sent_.emplace_back(trajectory.points[i].time_from_start.toSec(), points[i].head<3>());
+    reference.emplace_back(trajectory.points[i].time_from_start.toSec(), points[i].head<3>());
   }
-  sent_at_ = trajectory.header.stamp;
-  off_track_ = false;
-  return t;
-}
-
-double NbvPlannerServer::trackingError(const ros::Time& now) const {
-  if (sent_.empty()) return 0.0;
-  const double t = (now - sent_at_).toSec();
-  Eigen::Vector3d reference = sent_.back().second;
-  for (size_t i = 1; i < sent_.size(); ++i) {
-    if (t >= sent_[i].first) continue;
-    const double t0 = sent_[i - 1].first, t1 = sent_[i].first;
-    const double f = t <= t0 ? 0.0 : (t - t0) / std::max(t1 - t0, 1e-9);
-    reference = sent_[i - 1].second + f * (sent_[i].second - sent_[i - 1].second);
-    break;
-  }
-  return (currentPose().head<3>() - reference).norm();
-}
-
-bool NbvPlannerServer::offTrack(const ros::Time& now, double* error) {
-  *error = 0.0;
-  if (config_.max_tracking_error > 0.0) *error = trackingError(now);
-  if (*error <= config_.max_tracking_error || config_.max_tracking_error <= 0.0) {
-    off_track_ = false;
-    return false;
-  }
-  if (!off_track_) off_track_since_ = now;
-  off_track_ = true;
-  return (now - off_track_since_).toSec() >= config_.off_track_time;
+  monitor_.setReference(std::move(reference));
+  sent_at_ = header.stamp;
+  return trajectory.points.empty() ? 0.0 : trajectory.points.back().time_from_start.toSec();
 }
 
 void NbvPlannerServer::publishStatus() {
@@ -481,59 +393,17 @@ void NbvPlannerServer::publishMarkers() {
   std_msgs::Header header;
   header.stamp = ros::Time::now();
   header.frame_id = config_.world_frame;
-  visualization_msgs::MarkerArray markers;
-  std::vector<Eigen::Vector4d> tour{uav_};
-  tour.insert(tour.end(), explorer_.tour().begin(), explorer_.tour().end());
-  markers.markers.push_back(lineStrip(header, "tour", tour, 1.0f, 0.6f, 0.0f));
-  markers.markers.push_back(lineStrip(header, "leg", explorer_.currentPath(), 0.0f, 0.8f, 0.2f));
-  std::vector<Eigen::Vector4d> target;
-  if (explorer_.hasTarget() && !explorer_.tour().empty()) target.push_back(explorer_.tour().front());
-  visualization_msgs::Marker t = lineStrip(header, "target", target, 1.0f, 0.0f, 1.0f,
-                                           visualization_msgs::Marker::SPHERE_LIST);
-  t.scale.x = t.scale.y = t.scale.z = 0.6;
-  markers.markers.push_back(t);
-  std::vector<Eigen::Vector4d> black;
-  for (const Eigen::Vector3d& b : explorer_.blacklist()) black.emplace_back(b.x(), b.y(), b.z(), 0.0);
-  visualization_msgs::Marker bl = lineStrip(header, "blacklisted", black, 0.1f, 0.1f, 0.1f,
-                                            visualization_msgs::Marker::SPHERE_LIST);
-  bl.scale.x = bl.scale.y = bl.scale.z = 0.4;
-  markers.markers.push_back(bl);
-  // The roadmap (grey) and the tour's cluster-graph arcs, red (low utility f_uv) to green (high).
   // The roadmap is copied out of OMPL whole (bench_explorer BM_RoadmapEdges):
   // at most every kRoadmapMarkerPeriod wall seconds. rviz keeps a marker until
   // one of the same namespace and id replaces it, so the arrays between copies
   // leave it out rather than send up to 40,000 points again.
   const ros::WallTime wall = ros::WallTime::now();
-  if (roadmap_marker_wall_.isZero() || (wall - roadmap_marker_wall_).toSec() >= kRoadmapMarkerPeriod) {
-    visualization_msgs::Marker roadmap = lineStrip(header, "roadmap", {}, 0.6f, 0.6f, 0.6f);
-    roadmap.type = visualization_msgs::Marker::LINE_LIST;
-    roadmap.scale.x = 0.02;
-    roadmap.color.a = 0.4f;
-    for (const auto& [a, b] : explorer_.pathPlanner().roadmapEdges(20000)) {
-      roadmap.points.push_back(tf2::toMsg(a));
-      roadmap.points.push_back(tf2::toMsg(b));
-    }
+  const bool roadmap = roadmap_marker_wall_.isZero() || (wall - roadmap_marker_wall_).toSec() >= kRoadmapMarkerPeriod;
+  visualization_msgs::MarkerArray markers = plannerMarkers(header, explorer_, uav_, roadmap);
+  for (const visualization_msgs::Marker& m : markers.markers) {
     // An empty roadmap (nothing planned yet) is copied again on the next array.
-    if (!roadmap.points.empty()) roadmap_marker_wall_ = wall;
-    markers.markers.push_back(std::move(roadmap));
+    if (m.ns == "roadmap" && !m.points.empty()) roadmap_marker_wall_ = wall;
   }
-  visualization_msgs::Marker graph = lineStrip(header, "cluster_graph", {}, 1.0f, 1.0f, 1.0f);
-  graph.type = visualization_msgs::Marker::LINE_LIST;
-  graph.scale.x = 0.08;
-  double best = 0.0;
-  for (const TourArc& arc : explorer_.tourArcs()) best = std::max(best, arc.utility);
-  for (const TourArc& arc : explorer_.tourArcs()) {
-    std_msgs::ColorRGBA c;
-    const double f = best > 0.0 ? arc.utility / best : 0.0;
-    c.r = static_cast<float>(1.0 - f);
-    c.g = static_cast<float>(f);
-    c.a = 1.0f;
-    graph.points.push_back(tf2::toMsg(arc.from));
-    graph.points.push_back(tf2::toMsg(arc.to));
-    graph.colors.push_back(c);
-    graph.colors.push_back(c);
-  }
-  markers.markers.push_back(graph);
   markers_pub_.publish(markers);
 }
 

@@ -218,6 +218,7 @@ class Explorer {
   const ExplorerStats& stats() const { return stats_; }
   const ExplorerConfig& config() const { return config_; }
   PathPlanner& pathPlanner() { return planner_; }
+  const PathPlanner& pathPlanner() const { return planner_; }
 
  private:
   struct Place {

@@ -53,6 +53,7 @@
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
 #include "surface_nbv/surface/frontier.h"
+#include "surface_nbv/tracking/reference_monitor.h"
 
 namespace surface_nbv {
 
@@ -93,11 +94,6 @@ class NbvPlannerServer {
   Eigen::Vector4d currentPose() const;
   // A leg decided from uav_ starts where the UAV is now (restartLeg, leg_restart_reach).
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
-  // Metres from the UAV to the last trajectory's reference point at `now`.
-  double trackingError(const ros::Time& now) const;
-  // Whether the UAV has been farther than max_tracking_error from it for
-  // off_track_time. Also gives trackingError(now) in `error`, 0 with the check off.
-  bool offTrack(const ros::Time& now, double* error);
   void publishStatus();
   void publishMarkers();
   void writeReport() const;
@@ -110,6 +106,7 @@ class NbvPlannerServer {
   LatestOdometry latest_;
   Explorer explorer_;
   MissionSupervisor supervisor_;  // take-off, leg ends, decisions, limits, tally (mission_supervisor.h)
+  ReferenceMonitor monitor_;      // is the UAV following the last trajectory sent (max_tracking_error)?
   ros::Subscriber frontier_sub_, odometry_sub_;
   ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;
   ros::ServiceServer start_srv_, stop_srv_, replan_srv_;
@@ -127,9 +124,7 @@ class NbvPlannerServer {
   bool have_mission_start_ = false;  // mission_start_ is the mission's first odometry stamp
   double path_length_ = 0.0;
   bool took_off_ = false;          // the take-off was asked for (once per node: not again after ~start)
-  std::vector<std::pair<double, Eigen::Vector3d>> sent_;  // last trajectory: time from its stamp, position
-  ros::Time sent_at_, off_track_since_;
-  bool off_track_ = false;
+  ros::Time sent_at_;  // the stamp of the last trajectory sent
   ros::WallTime roadmap_marker_wall_;  // when publishMarkers last copied the roadmap (0: never)
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
