@@ -74,7 +74,7 @@ struct MissionConfig : MissionFlightConfig {
   // UAV flies and maps on its estimate, the camera renders at the truth.
   // Off by default. Its seed is pose_error_seed + seed.
   PoseErrorConfig pose_error;
-  // The heading from the walls' directions (manhattan_yaw.h;
+  // The heading from the walls' directions (manhattan_yaw.h,
   // mission/manhattan_yaw, manhattan_yaw_gain): for structures of walls 90
   // degrees apart. Off by default.
   ManhattanYawConfig manhattan_yaw;

@@ -39,11 +39,11 @@
 // the bounds and from which the mesh lies within the camera's range.
 //
 // Refused, each with one line saying why and what to do:
-//  - an empty mesh, one of zero area, one less than 1 m across or a line;
+//  - an empty mesh, one of zero area, one less than 1 m across or a line,
 //  - a mesh that looks as if it lay on its side (its longer horizontal extent
 //    more than 2.5 times both its other extents), unless the up axis was
-//    given (--up-axis y stands a Y-up model upright, --up-axis z keeps it);
-//    checked only when the bounds are derived;
+//    given (--up-axis y stands a Y-up model upright, --up-axis z keeps it),
+//    checked only when the bounds are derived,
 //  - a map that does not fit in memory (estimateMapBytes) or in the map's
 //    block limit at the voxel size: the message gives the size and the
 //    voxel size that would fit.

@@ -5,7 +5,7 @@
 //   DIR/trial_K/: reconstruction.ply, map.tsdf, path.csv (flown poses),
 //                 events.csv (every frontier update), eval/ (the evaluation's
 //                 report and clouds), coverage.csv (coverage_every) and the
-//                 PNG plots (plots);
+//                 PNG plots (plots),
 //   DIR/:         report.json and report.md over all trials (the paper's
 //                 Table 2 columns, mean and standard deviation).
 // What it prints goes to the `out` stream (the lines nbv_mission prints),
