@@ -33,6 +33,14 @@ ExplorerDecision decision(ExplorerAction action, ReplanReason reason = ReplanRea
   return d;
 }
 
+// Take-off without a spin, the first decision at once: a leg to (5, 0, 0) ending at 10 s.
+void flyFirstLeg(MissionSupervisor* s) {
+  s->takeOff(Eigen::Vector4d::Zero());
+  ASSERT_EQ(s->poll(at(0.0)), SupervisorStep::kDecide);
+  s->decided(decision(ExplorerAction::kFly), at(0.0));
+  s->legSent(Eigen::Vector4d(5, 0, 0, 0), 10.0);
+}
+
 }  // namespace
 
 TEST(MissionSupervisor, ValidatesTheFlightKeys) {
@@ -92,10 +100,7 @@ TEST(MissionSupervisor, DecidesEveryPeriodAndAtOnceWhenALegToATargetEnds) {
   SupervisorConfig c = headless(1.0);
   c.flight.start_spin = 0.0;
   MissionSupervisor s(c);
-  s.takeOff(Eigen::Vector4d::Zero());
-  ASSERT_EQ(s.poll(at(0.0)), SupervisorStep::kDecide);
-  s.decided(decision(ExplorerAction::kFly), at(0.0));
-  s.legSent(Eigen::Vector4d(5, 0, 0, 0), 10.0);
+  ASSERT_NO_FATAL_FAILURE(flyFirstLeg(&s));
   EXPECT_EQ(s.poll(at(0.5)), SupervisorStep::kWait);
   EXPECT_EQ(s.poll(at(0.999999)), SupervisorStep::kWait);
   EXPECT_EQ(s.poll(at(1.0)), SupervisorStep::kDecide);  // the period is due
@@ -131,10 +136,7 @@ TEST(MissionSupervisor, SettleEndsALegOnceAndNewFrontiersDecide) {
   c.leg_settle = 0.5;
   c.flight.start_spin = 0.0;
   MissionSupervisor s(c);
-  s.takeOff(Eigen::Vector4d::Zero());
-  ASSERT_EQ(s.poll(at(0.0)), SupervisorStep::kDecide);
-  s.decided(decision(ExplorerAction::kFly), at(0.0));
-  s.legSent(Eigen::Vector4d(5, 0, 0, 0), 10.0);
+  ASSERT_NO_FATAL_FAILURE(flyFirstLeg(&s));
   EXPECT_EQ(s.poll(at(3.0)), SupervisorStep::kWait);  // no new frontier, leg on
   SupervisorInput fresh = at(3.0);
   fresh.frontier_new = true;
