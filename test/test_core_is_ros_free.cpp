@@ -31,7 +31,7 @@ std::vector<std::string> rosIncludes(const fs::path& file) {
 TEST(CoreIsRosFree, DetectorCatchesRosIncludes) {
   const fs::path tmp = fs::temp_directory_path() / "surface_nbv_ros_include_probe.h";
   std::ofstream(tmp) << "#include <vector>\n#include <ros/ros.h>\n  #include \"sensor_msgs/Image.h\"\n"
-                        "#include \"surface_nbv/NodeStats.h\"\n#include \"surface_nbv/sim/depth_camera.h\"\n";
+                        "#include \"surface_nbv/NodeStats.h\"\n#include \"surface_nbv/sensor/depth_camera.h\"\n";
   EXPECT_EQ(rosIncludes(tmp).size(), 3u);
   fs::remove(tmp);
 }

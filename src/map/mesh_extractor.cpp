@@ -4,7 +4,6 @@
 #include <unordered_map>
 #include <utility>
 
-#include "surface_nbv/sim/mesh_io.h"
 
 namespace surface_nbv {
 namespace {
@@ -305,6 +304,5 @@ TriangleMesh MeshExtractor::mesh(bool merge_vertices) const {
   return out;
 }
 
-Status MeshExtractor::exportMesh(const std::string& path) const { return saveMesh(mesh(true), path); }
 
 }  // namespace surface_nbv

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/sensor/camera_mount.h"
 
 namespace surface_nbv {
 

@@ -10,7 +10,7 @@
 #include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/ros/param_reader.h"
 #include "surface_nbv/ros/sim_params.h"
-#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/sensor/camera_mount.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "camera_mount");

@@ -9,7 +9,7 @@
 #include <visualization_msgs/Marker.h>
 
 #include "surface_nbv/ros/depth_conversions.h"
-#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sensor/depth_points.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/safe_file_name.h"
 

@@ -11,6 +11,7 @@
 #include "surface_nbv/map/map_update.h"
 #include "surface_nbv/ros/depth_conversions.h"
 #include "surface_nbv/ros/map_conversions.h"
+#include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/safe_file_name.h"
 
 namespace surface_nbv {
@@ -319,7 +320,7 @@ bool TsdfMapperServer::exportMesh(surface_nbv::FilePath::Request& req, surface_n
   finishMeshLayer();
   mesher_->update(mesh_layer_.map());
   meshed_stamp_ = map_.changeCounter();
-  s = mesher_->exportMesh(path);
+  s = saveMesh(mesher_->mesh(true), path);
   res.code = s ? 0 : 2;
   res.message = s ? "wrote " + std::to_string(mesher_->mesh().numTriangles()) + " triangles to " + path : s.message();
   return true;

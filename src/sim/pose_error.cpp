@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "surface_nbv/sim/sensor_model.h"
+#include "surface_nbv/sensor/sensor_model.h"
 
 namespace surface_nbv {
 namespace {

@@ -1,6 +1,6 @@
 #include "surface_nbv/surface/frontier.h"
 
-#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/sensor/camera_mount.h"
 
 namespace surface_nbv {
 

@@ -166,7 +166,7 @@ int main(int argc, char** argv) {
   MeshExtractor mesher;
   mesher.update(map);
   const TriangleMesh reconstruction = mesher.mesh();
-  if (Status s = mesher.exportMesh(out_dir + "/reconstruction.ply"); !s) return fail(s.message());
+  if (Status s = saveMesh(reconstruction, out_dir + "/reconstruction.ply"); !s) return fail(s.message());
   if (Status s = saveMap(map, out_dir + "/map.tsdf"); !s) return fail(s.message());
   EvalConfig eval_config;
   eval_config.voxel_size = voxel;

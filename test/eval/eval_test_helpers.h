@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "surface_nbv/eval/eval_config.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 
 namespace surface_nbv {
 namespace eval_test {

@@ -285,20 +285,20 @@ TEST(MeshExtractor, ExportsPlyAndStlAndRefusesOtherExtensions) {
       std::filesystem::temp_directory_path() / ("snbv_mesh_extractor_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   MeshExtractor extractor;
-  EXPECT_FALSE(extractor.exportMesh((dir / "empty.ply").string()).ok());
+  EXPECT_FALSE(saveMesh(extractor.mesh(), (dir / "empty.ply").string()).ok());
   TsdfMap map(testConfig());
   writeSdf(&map, sphere(Vector3d(2.0, 2.0, 1.0), 0.7), 4 * kVoxel);
   extractor.update(map);
   const size_t triangles = extractor.mesh().numTriangles();
   for (const std::string name : {"sphere.ply", "sphere.stl"}) {
     const std::string path = (dir / name).string();
-    const Status s = extractor.exportMesh(path);
+    const Status s = saveMesh(extractor.mesh(), path);
     ASSERT_TRUE(s.ok()) << s.message();
     TriangleMesh loaded;
     ASSERT_TRUE(loadMesh(path, MeshLoadOptions(), &loaded).ok());
     EXPECT_EQ(loaded.numTriangles(), triangles) << name;
   }
-  const Status bad = extractor.exportMesh((dir / "sphere.obj").string());
+  const Status bad = saveMesh(extractor.mesh(), (dir / "sphere.obj").string());
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.message().find("extension"), std::string::npos) << bad.message();
   EXPECT_FALSE(std::filesystem::exists(dir / "sphere.obj"));

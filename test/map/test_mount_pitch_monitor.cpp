@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/sensor/camera_mount.h"
 
 using namespace surface_nbv;
 

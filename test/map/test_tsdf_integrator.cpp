@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sensor/depth_points.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/mesh_builder.h"
 

@@ -8,7 +8,7 @@
 
 #include "planning_test_worlds.h"
 #include "surface_nbv/planning/explorer.h"
-#include "surface_nbv/sim/scripted_flight.h"
+#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/util/angles.h"
 
 using namespace surface_nbv;

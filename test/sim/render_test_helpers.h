@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sensor/depth_points.h"
 #include "surface_nbv/sim/mesh_builder.h"
 #include "surface_nbv/sim/procedural_scenes.h"
 #include "surface_nbv/sim/raycast_scene.h"

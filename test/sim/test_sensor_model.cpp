@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "surface_nbv/sim/sensor_model.h"
+#include "surface_nbv/sensor/sensor_model.h"
 
 namespace surface_nbv {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_test_maps.h"
 
 using namespace surface_nbv;

@@ -19,7 +19,7 @@
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/planning/path_planner.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_nbv/sim/pose_error.h"
 #include "surface_nbv/sim/scene_source.h"
 #include "surface_nbv/surface/surface_config.h"

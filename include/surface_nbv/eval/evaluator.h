@@ -14,7 +14,7 @@
 #include "surface_nbv/eval/error_stats.h"
 #include "surface_nbv/eval/eval_config.h"
 #include "surface_nbv/eval/surface_sampler.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

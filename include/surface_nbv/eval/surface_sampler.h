@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

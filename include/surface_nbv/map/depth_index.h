@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "surface_nbv/map/tsdf_config.h"
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
 
 namespace surface_nbv {
 

@@ -16,7 +16,7 @@
 
 #include "surface_nbv/map/tsdf_config.h"
 #include "surface_nbv/map/tsdf_map.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 
 namespace surface_nbv {
 

@@ -17,7 +17,7 @@
 #include <Eigen/Core>
 
 #include "surface_nbv/map/tsdf_map.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -60,8 +60,6 @@ class MeshExtractor {
   const BlockMeshes& blockMeshes() const { return meshes_; }
   // Blocks re-meshed (or whose mesh was dropped) by the last update, sorted.
   const std::vector<Eigen::Vector3i>& lastUpdatedBlocks() const { return updated_; }
-  // Writes mesh(true) through saveMesh: .ply or .stl; an empty mesh is an error.
-  Status exportMesh(const std::string& path) const;
 
   // Meshes the cubes of one block from scratch (what update() does per block).
   static BlockMesh meshBlock(const TsdfMap& map, const Eigen::Vector3i& block);

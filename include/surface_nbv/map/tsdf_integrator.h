@@ -26,8 +26,8 @@
 #include "surface_nbv/map/depth_index.h"
 #include "surface_nbv/map/integrate_kernel.h"
 #include "surface_nbv/map/tsdf_map.h"
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 
 #include "surface_nbv/map/tsdf_map.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_nbv/sim/raycast_scene.h"
 
 namespace surface_nbv {

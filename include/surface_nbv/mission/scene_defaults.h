@@ -53,7 +53,7 @@
 #include <vector>
 
 #include "surface_nbv/mission/mission_config.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/json_writer.h"
 #include "surface_nbv/util/status.h"
 

@@ -23,7 +23,7 @@
 
 #include <Eigen/Core>
 
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_nbv/surface/frontier.h"
 #include "surface_nbv/util/status.h"
 

@@ -14,9 +14,9 @@
 #include <visualization_msgs/Marker.h>
 
 #include "surface_nbv/common.h"
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

@@ -7,7 +7,7 @@
 
 #include "surface_nbv/config/config_keys.h"
 #include "surface_nbv/ros/param_reader.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_nbv/sim/pose_error.h"
 #include "surface_nbv/sim/scene_source.h"
 

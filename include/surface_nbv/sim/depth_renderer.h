@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
 #include "surface_nbv/sim/raycast_scene.h"
 
 namespace surface_nbv {

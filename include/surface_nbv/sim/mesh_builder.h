@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 
 namespace surface_nbv {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "surface_nbv/sim/mesh_io.h"
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/status.h"
 

@@ -2,13 +2,13 @@
 // loops around the footprint of a box at a fixed standoff (straight sides and
 // quarter-circle corners), one loop per altitude, climbing between loops,
 // at constant speed, yaw facing the box. Poses are of base_link in the world
-// frame (x forward, z up); opticalInBody() gives the camera mount.
+// frame (x forward, z up); sensor/camera_mount.h gives the camera mount.
 #pragma once
 
 #include <vector>
 
 #include "surface_nbv/common.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -49,15 +49,5 @@ class ScriptedFlight {
   std::vector<Segment> segments_;
   double total_length_ = 0.0;
 };
-
-// Camera optical frame (z forward, x right, y down) on a forward-facing mount
-// at `offset` in base_link, pitched `pitch_deg` down about the body's y axis
-// (CameraConfig::pitch_deg; 0 is level).
-Transform opticalInBody(const Eigen::Vector3d& offset = Eigen::Vector3d::Zero(), double pitch_deg = 0.0);
-// The same at the origin of base_link, for a camera's config.
-Transform opticalInBody(const CameraConfig& camera);
-
-// T_W_B of a level base_link at p_W turned by yaw about world z.
-Transform levelBodyPose(const Eigen::Vector3d& p_W, double yaw);
 
 }  // namespace surface_nbv

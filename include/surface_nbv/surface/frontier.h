@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "surface_nbv/common.h"
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 
 namespace surface_nbv {
 

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {

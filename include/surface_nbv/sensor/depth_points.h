@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
 
 namespace surface_nbv {
 

@@ -1,4 +1,4 @@
-#include "surface_nbv/sim/depth_points.h"
+#include "surface_nbv/sensor/depth_points.h"
 
 #include <algorithm>
 #include <cmath>

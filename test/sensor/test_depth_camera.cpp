@@ -1,4 +1,4 @@
-#include "surface_nbv/sim/depth_camera.h"
+#include "surface_nbv/sensor/depth_camera.h"
 
 #include <cmath>
 #include <functional>

@@ -1,4 +1,4 @@
-#include "surface_nbv/sim/triangle_mesh.h"
+#include "surface_nbv/sensor/triangle_mesh.h"
 
 #include <algorithm>
 

@@ -1,12 +1,12 @@
-#include "surface_nbv/sim/sensor_model.h"
+#include "surface_nbv/sensor/sensor_model.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "surface_nbv/sim/depth_camera.h"
-#include "surface_nbv/sim/depth_image.h"
+#include "surface_nbv/sensor/depth_camera.h"
+#include "surface_nbv/sensor/depth_image.h"
 #include "surface_nbv/util/parallel_for.h"
 
 namespace surface_nbv {

@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "surface_nbv/sim/sensor_model.h"
+#include "surface_nbv/sensor/sensor_model.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
