@@ -10,8 +10,8 @@
 #include "surface_nbv/mission/oracle_gain.h"
 #include "surface_nbv/planning/explorer.h"
 #include "surface_nbv/planning/mission_supervisor.h"
-#include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sensor/camera_mount.h"
+#include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/surface/frontier_builder.h"
 #include "surface_nbv/tracking/tracker_sim.h"
 

@@ -38,10 +38,10 @@
 #include "surface_nbv/mission/flight_csv.h"
 #include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/mission/scene_defaults.h"
+#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/sensor/depth_points.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/mesh_io.h"
-#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/json_writer.h"
 

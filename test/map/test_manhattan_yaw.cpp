@@ -7,10 +7,10 @@
 
 #include <memory>
 
+#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/procedural_scenes.h"
 #include "surface_nbv/sim/raycast_scene.h"
-#include "surface_nbv/sensor/camera_mount.h"
 
 namespace surface_nbv {
 namespace {

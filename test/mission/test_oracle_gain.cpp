@@ -10,9 +10,9 @@
 
 #include "surface_nbv/map/tsdf_integrator.h"
 #include "surface_nbv/mission/mission_config.h"
+#include "surface_nbv/sensor/camera_mount.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/sim/scene_source.h"
-#include "surface_nbv/sensor/camera_mount.h"
 
 using namespace surface_nbv;
 

@@ -23,8 +23,8 @@
 #include "surface_nbv/map/tsdf_map.h"
 #include "surface_nbv/mission/mission_config.h"
 #include "surface_nbv/planning/mission_supervisor.h"
-#include "surface_nbv/sim/raycast_scene.h"
 #include "surface_nbv/sensor/triangle_mesh.h"
+#include "surface_nbv/sim/raycast_scene.h"
 
 namespace surface_nbv {
 

@@ -37,8 +37,8 @@
 #include "surface_nbv/planning/path_planner.h"
 #include "surface_nbv/planning/tour_result.h"
 #include "surface_nbv/sensor/depth_camera.h"
-#include "surface_nbv/sim/raycast_scene.h"
 #include "surface_nbv/sensor/triangle_mesh.h"
+#include "surface_nbv/sim/raycast_scene.h"
 #include "surface_nbv/tracking/trajectory.h"
 
 namespace surface_nbv {

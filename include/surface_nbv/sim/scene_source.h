@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/sensor/triangle_mesh.h"
+#include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/util/cli_args.h"
 #include "surface_nbv/util/status.h"
 
