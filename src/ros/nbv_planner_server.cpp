@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <utility>
 
 #include <nav_msgs/Path.h>
@@ -13,9 +11,9 @@
 #include "surface_nbv/FilePath.h"
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/planning/leg_start.h"
+#include "surface_nbv/planning/mission_report.h"
 #include "surface_nbv/ros/frontier_conversions.h"
 #include "surface_nbv/ros/planner_messages.h"
-#include "surface_nbv/util/json_writer.h"
 
 namespace surface_nbv {
 namespace {
@@ -313,31 +311,23 @@ void NbvPlannerServer::finish() {
 
 void NbvPlannerServer::writeReport() const {
   if (config_.report_directory.empty()) return;
-  std::error_code ec;
-  std::filesystem::create_directories(config_.report_directory, ec);
-  const ExplorerStats& s = explorer_.stats();
-  JsonWriter json;
-  json.beginObject().value("state", stateName()).value("reason", reason_).value("message", message_);
-  json.value("flight_time_s", flightTime()).value("max_flight_time_s", config_.max_flight_time);
-  json.value("path_length_m", path_length_).value("holds", stats_.get("holds"));
-  json.beginObject("uav").value("x", uav_.x()).value("y", uav_.y()).value("z", uav_.z()).value("yaw", uav_.w());
-  json.endObject();
-  supervisor_.tally().writeJson(&json);
-  json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
-  json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
-  json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
-  json.value("lattice_legs", s.lattice_legs);
-  json.value("leg_end_wait_s", leg_end_wait_s_);
-  json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
-  json.value("blacklisted", explorer_.blacklist().size());
+  MissionReport report;
+  report.progress = progress();
+  report.max_flight_time = config_.max_flight_time;
+  report.holds = stats_.get("holds");
+  report.uav = uav_;
+  report.tally = supervisor_.tally();
+  report.ises = frontier_.ises.size();
+  report.ises_inside = frontier_.insideCount();
+  report.explorer = explorer_.stats();
+  report.leg_end_wait_s = leg_end_wait_s_;
+  report.leg_time_budget = config_.explorer.leg_time_budget;
+  report.blacklisted = explorer_.blacklist().size();
   // What explore_sim.launch derived from the scene for the keys its config left out (nbv_scene).
-  std::string scene_defaults;
-  if (ros::param::get("/scene_defaults", scene_defaults)) json.value("scene_defaults", scene_defaults);
-  json.endObject();
-  const std::string path = config_.report_directory + "/mission_report.json";
-  std::ofstream out(path);
-  out << json.str();
-  if (!out) ROS_WARN("nbv_planner: cannot write %s", path.c_str());
+  if (std::string derived; ros::param::get("/scene_defaults", derived)) report.scene_defaults = derived;
+  if (Status s = writeMissionReport(config_.report_directory, report); !s) {
+    ROS_WARN("nbv_planner: %s", s.message().c_str());
+  }
 }
 
 double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points) {
@@ -356,6 +346,10 @@ double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& p
   monitor_.setReference(std::move(reference));
   sent_at_ = header.stamp;
   return trajectory.points.empty() ? 0.0 : trajectory.points.back().time_from_start.toSec();
+}
+
+MissionProgress NbvPlannerServer::progress() const {
+  return {stateName(), reason_, message_, flightTime(), path_length_};
 }
 
 void NbvPlannerServer::publishStatus() {

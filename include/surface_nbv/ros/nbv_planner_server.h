@@ -47,6 +47,7 @@
 
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/mission_report.h"
 #include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/ros/latest_odometry.h"
 #include "surface_nbv/ros/map_feed.h"
@@ -84,6 +85,8 @@ class NbvPlannerServer {
   void finish();
   // s of odometry time since the first odometry of the mission, 0 before it.
   double flightTime() const;
+  // The state, reason, message, flight time and path flown (status and report).
+  MissionProgress progress() const;
   // What the supervisor is told at ROS time `now`.
   SupervisorInput input(const ros::Time& now) const;
   // Publishes a leg (or the take-off spin) from its first point and tells the supervisor.
@@ -96,6 +99,7 @@ class NbvPlannerServer {
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
   void publishStatus();
   void publishMarkers();
+  // mission_report.json into report_directory (when set): planning/mission_report.h.
   void writeReport() const;
   const char* stateName() const;
 
