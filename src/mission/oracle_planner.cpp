@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <deque>
 #include <queue>
 #include <random>
 
 #include "surface_nbv/eval/free_space_grid.h"
 #include "surface_nbv/eval/surface_sampler.h"
 #include "surface_nbv/planning/open_path.h"
+#include "surface_nbv/planning/reachable_space.h"
 #include "surface_nbv/sim/depth_renderer.h"
 #include "surface_nbv/surface/frontier.h"
 #include "surface_nbv/tracking/trajectory.h"
@@ -140,47 +140,6 @@ void OraclePlanner::buildMap() {
   collision_ = std::make_unique<CollisionMap>(*map_, config_.collision);
 }
 
-// Collision cells whose centre is as clear as the planner needs (radius +
-// half its motion-check step), 6-connected to the start's cell.
-std::vector<uint8_t> OraclePlanner::reachableCells() const {
-  const Eigen::Vector3i g = collision_->gridCells();
-  const double cell = collision_->cellSize();
-  const double step = config_.path.validity_resolution > 0.0 ? config_.path.validity_resolution : 0.5 * cell;
-  const double clearance = config_.path.collision_radius + 0.5 * step;
-  const Eigen::Vector3d origin = config_.tsdf.bounds.min;
-  auto linear = [&](const Eigen::Vector3i& c) {
-    return static_cast<size_t>(c.x()) + static_cast<size_t>(g.x()) * (c.y() + static_cast<size_t>(g.y()) * c.z());
-  };
-  auto inGrid = [&](const Eigen::Vector3i& c) { return (c.array() >= 0).all() && (c.array() < g.array()).all(); };
-  auto clear = [&](const Eigen::Vector3i& c) {
-    return collision_->isFree(origin + cell * (c.cast<double>().array() + 0.5).matrix(), clearance);
-  };
-  std::vector<uint8_t> reach(static_cast<size_t>(g.x()) * g.y() * g.z(), 0);
-  std::deque<Eigen::Vector3i> queue;
-  const Eigen::Vector3i s = ((config_.start.head<3>() - origin) / cell).array().floor().cast<int>();
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const Eigen::Vector3i c = s + Eigen::Vector3i(dx, dy, dz);
-        if (inGrid(c) && !reach[linear(c)] && clear(c)) {
-          reach[linear(c)] = 1;
-          queue.push_back(c);
-        }
-      }
-  static const int kSteps[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  while (!queue.empty()) {
-    const Eigen::Vector3i c = queue.front();
-    queue.pop_front();
-    for (const auto& d : kSteps) {
-      const Eigen::Vector3i n = c + Eigen::Vector3i(d[0], d[1], d[2]);
-      if (!inGrid(n) || reach[linear(n)] || !clear(n)) continue;
-      reach[linear(n)] = 1;
-      queue.push_back(n);
-    }
-  }
-  return reach;
-}
-
 void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
   SurfaceCloud source;
   if (Status s = SurfaceSampler(config_.candidate_spacing, config_.seed + 1, config_.threads)
@@ -189,17 +148,24 @@ void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
     r->status = Status::Error("candidate samples: " + s.message());
     return;
   }
-  const std::vector<uint8_t> reach = reachableCells();
-  const Eigen::Vector3i g = collision_->gridCells();
   const double cell = collision_->cellSize();
+  // The free space connected to the start through collision cells whose
+  // centre passes the path planner's own test (isFree at its clearance, the
+  // radius plus half its motion-check step, PathPlanner::clearance()): the
+  // explorer's quicker test lets through passages the planner cannot fly. A
+  // start whose own cell is not clear seeds from the clear ones of the 26
+  // around it (1.75 cells: at most one cell along each axis).
+  const double step = config_.path.validity_resolution > 0.0 ? config_.path.validity_resolution : 0.5 * cell;
+  ReachableSpace reach;
+  reach.fill(*collision_, config_.tsdf.bounds, config_.start.head<3>(), config_.path.collision_radius + 0.5 * step,
+             0.0, 1.75 * cell, ReachableSpace::Clear::kPlannerTest);
+  if (!reach.seeded()) {
+    r->status = Status::Error("the start is not clear: no collision cell at or next to it has the planner's clearance");
+    return;
+  }
   const double clearance = config_.path.collision_radius + cell;
   const double max_elevation = config_.camera.maxPoseElevationDeg(config_.vfov_margin_deg) * M_PI / 180.0;
   const double min_elevation = config_.camera.minPoseElevationDeg(config_.vfov_margin_deg) * M_PI / 180.0;
-  auto reachable = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector3i c = ((p - config_.tsdf.bounds.min) / cell).array().floor().cast<int>();
-    if (!((c.array() >= 0).all() && (c.array() < g.array()).all())) return false;
-    return reach[static_cast<size_t>(c.x()) + static_cast<size_t>(g.x()) * (c.y() + size_t(g.y()) * c.z())] != 0;
-  };
   std::mt19937_64 rng(config_.seed);
   std::uniform_real_distribution<double> azimuth(-M_PI, M_PI);
   std::vector<Eigen::Vector4d> kept;
@@ -223,7 +189,7 @@ void OraclePlanner::buildCandidates(Candidates* out, OracleResult* r) const {
           const Eigen::Vector3d p = s + f * config_.delta_pose * dir;
           if (!config_.tsdf.bounds.contains(p)) continue;
           ++r->candidates_built;
-          if (!collision_->isFree(p, clearance) || !reachable(p)) continue;
+          if (!collision_->isFree(p, clearance) || !reach.reachable(p)) continue;
           kept.emplace_back(p.x(), p.y(), p.z(), wrapAngle(az + M_PI));
           break;
         }

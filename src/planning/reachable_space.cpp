@@ -16,16 +16,27 @@ bool ReachableSpace::cellOf(const Eigen::Vector3d& p, Eigen::Vector3i* cell) con
 }
 
 void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, const Eigen::Vector3d& from,
-                          double radius, double slack, double seed_radius) {
+                          double radius, double slack, double seed_radius, Clear clear) {
   origin_ = bounds.min;
   cells_ = map.gridCells();
   cell_ = map.cellSize();
   filled_ = 0;
   seeded_ = false;
-  // kOpen where the cell is clear (one pass over the transform), then the
-  // fill turns the connected ones to kFilled.
+  // kOpen where the cell is clear (one pass over the transform, or a
+  // distance query per cell), then the fill turns the connected ones to kFilled.
   static_assert(kOpen == 1, "clearCells marks a clear cell 1");
-  map.clearCells(radius - slack, &state_);
+  if (clear == Clear::kCentreDistance) {
+    map.clearCells(radius - slack, &state_);
+  } else {
+    state_.assign(static_cast<size_t>(cells_.x()) * cells_.y() * cells_.z(), 0);
+    for (int x = 0; x < cells_.x(); ++x)
+      for (int y = 0; y < cells_.y(); ++y)
+        for (int z = 0; z < cells_.z(); ++z) {
+          const Eigen::Vector3i c(x, y, z);
+          const Eigen::Vector3d centre = origin_ + cell_ * (c.cast<double>().array() + 0.5).matrix();
+          if (map.isFree(centre, radius - slack)) state_[index(c)] = kOpen;
+        }
+  }
   auto open = [&](const Eigen::Vector3i& c) {
     return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && state_[index(c)] == kOpen;
   };

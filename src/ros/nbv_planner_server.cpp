@@ -2,20 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <utility>
 
 #include <nav_msgs/Path.h>
 #include <trajectory_msgs/MultiDOFJointTrajectory.h>
-#include <visualization_msgs/MarkerArray.h>
 
-#include "surface_nbv/FilePath.h"
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/planning/leg_start.h"
+#include "surface_nbv/planning/mission_report.h"
 #include "surface_nbv/ros/frontier_conversions.h"
 #include "surface_nbv/ros/planner_messages.h"
-#include "surface_nbv/util/json_writer.h"
 
 namespace surface_nbv {
 namespace {
@@ -36,7 +32,8 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       latest_(nh_, "odometry", config.world_frame),
       explorer_(config.explorer, config.path),
       supervisor_(config.supervisorConfig()),
-      monitor_(config.max_tracking_error, config.off_track_time) {
+      monitor_(config.max_tracking_error, config.off_track_time),
+      markers_(nh_, "planner/markers", kRoadmapMarkerPeriod) {
   if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
   }
@@ -46,7 +43,6 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
   trajectory_pub_ = nh_.advertise<trajectory_msgs::MultiDOFJointTrajectory>("planner/trajectory", 1, true);
   path_pub_ = nh_.advertise<nav_msgs::Path>("planner/path", 1, true);
   status_pub_ = nh_.advertise<surface_nbv::PlannerStatus>("planner/status", 1, true);
-  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("planner/markers", 1, true);
   start_srv_ = priv.advertiseService("start", &NbvPlannerServer::onStart, this);
   stop_srv_ = priv.advertiseService("stop", &NbvPlannerServer::onStop, this);
   replan_srv_ = priv.advertiseService("replan", &NbvPlannerServer::onReplan, this);
@@ -114,12 +110,11 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
   uav_ = uav;
   odometry_time_ = msg->header.stamp;
   have_odometry_ = true;
-  const bool flying = state_ == State::kRunning || state_ == State::kHovering;
-  if (flying && !have_mission_start_) {
+  if (flying() && !have_mission_start_) {
     mission_start_ = odometry_time_;
     have_mission_start_ = true;
   }
-  if (const std::string limit = flying ? supervisor_.limitReached(flightTime(), path_length_) : ""; !limit.empty()) {
+  if (const std::string limit = flying() ? supervisor_.limitReached(flightTime(), path_length_) : ""; !limit.empty()) {
     const size_t colon = limit.find(": ");
     reason_ = limit.substr(0, colon);
     message_ = limit.substr(colon + 2);
@@ -130,6 +125,15 @@ void NbvPlannerServer::onOdometry(const nav_msgs::OdometryConstPtr& msg) {
       supervisor_.legEnded(input(odometry_time_))) {
     tick();
   }
+}
+
+bool NbvPlannerServer::flying() const { return state_ == State::kRunning || state_ == State::kHovering; }
+
+std_msgs::Header NbvPlannerServer::header() const {
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = config_.world_frame;
+  return header;
 }
 
 double NbvPlannerServer::flightTime() const {
@@ -166,18 +170,12 @@ void NbvPlannerServer::tick() {
   // The map feed's snapshot requests and snapshots hold the callbacks back too.
   const double since_busy = (now - std::max(busy_until_, feed_.workedUntil())).toSec();
   if ((now - odometry_time_).toSec() > config_.odometry_timeout && since_busy > config_.odometry_timeout) {
-    if (state_ != State::kHovering || reason_ != "odometry_stale") {
-      reason_ = "odometry_stale";
-      hold("no odometry for " + std::to_string((now - odometry_time_).toSec()) + " s");
-    }
+    holdFor("odometry_stale", "no odometry for " + std::to_string((now - odometry_time_).toSec()) + " s");
     return;
   }
   if (!feed_.stamp().isZero() && (now - feed_.stamp()).toSec() > config_.map_timeout &&
       since_busy > config_.map_timeout) {
-    if (state_ != State::kHovering || reason_ != "map_stale") {
-      reason_ = "map_stale";
-      hold("no map update for " + std::to_string((now - feed_.stamp()).toSec()) + " s");
-    }
+    holdFor("map_stale", "no map update for " + std::to_string((now - feed_.stamp()).toSec()) + " s");
     return;
   }
   if (!have_mission_start_) mission_start_ = odometry_time_, have_mission_start_ = true;
@@ -253,7 +251,7 @@ void NbvPlannerServer::act(const ExplorerDecision& d) {
       return;
   }
   publishStatus();
-  publishMarkers();
+  markers_.publish(header(), explorer_, uav_);
 }
 
 Eigen::Vector4d NbvPlannerServer::currentPose() const {
@@ -279,11 +277,17 @@ bool NbvPlannerServer::cancelLeg() {
 
 void NbvPlannerServer::hold(const std::string& why) {
   cancelLeg();
-  if (state_ == State::kRunning || state_ == State::kHovering) state_ = State::kHovering;
+  if (flying()) state_ = State::kHovering;
   message_ = why;
   stats_.count("holds");
   ROS_WARN_THROTTLE(5.0, "nbv_planner: holding the current pose: %s", why.c_str());
   publishStatus();
+}
+
+void NbvPlannerServer::holdFor(const std::string& reason, const std::string& why) {
+  if (state_ == State::kHovering && reason_ == reason) return;
+  reason_ = reason;
+  hold(why);
 }
 
 void NbvPlannerServer::finish() {
@@ -292,17 +296,9 @@ void NbvPlannerServer::finish() {
   ROS_INFO("nbv_planner: mission over after %.1f s of flight and %.1f m: %s %s", flightTime(), path_length_,
            reason_.c_str(), message_.c_str());
   writeReport();
-  for (const auto& [service, file] : {std::make_pair(config_.save_map_service, std::string("mission.tsdf")),
-                                      std::make_pair(config_.export_mesh_service, std::string("mission.ply"))}) {
-    if (service.empty()) continue;
-    surface_nbv::FilePath call;
-    call.request.path = file;
-    if (!ros::service::call(service, call) || call.response.code != 0) {
-      ROS_WARN("nbv_planner: %s(%s) failed: %s", service.c_str(), file.c_str(), call.response.message.c_str());
-    }
-  }
+  saveMissionFiles(config_.save_map_service, config_.export_mesh_service);
   publishStatus();
-  publishMarkers();
+  markers_.publish(header(), explorer_, uav_);
   stats_.publishNow();
   if (config_.exit_when_done) {
     ROS_INFO("nbv_planner: exit_when_done: shutting down");
@@ -313,108 +309,52 @@ void NbvPlannerServer::finish() {
 
 void NbvPlannerServer::writeReport() const {
   if (config_.report_directory.empty()) return;
-  std::error_code ec;
-  std::filesystem::create_directories(config_.report_directory, ec);
-  const ExplorerStats& s = explorer_.stats();
-  JsonWriter json;
-  json.beginObject().value("state", stateName()).value("reason", reason_).value("message", message_);
-  json.value("flight_time_s", flightTime()).value("max_flight_time_s", config_.max_flight_time);
-  json.value("path_length_m", path_length_).value("holds", stats_.get("holds"));
-  json.beginObject("uav").value("x", uav_.x()).value("y", uav_.y()).value("z", uav_.z()).value("yaw", uav_.w());
-  json.endObject();
-  supervisor_.tally().writeJson(&json);
-  json.value("ises", frontier_.ises.size()).value("ises_inside", frontier_.insideCount());
-  json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
-  json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
-  json.value("lattice_legs", s.lattice_legs);
-  json.value("leg_end_wait_s", leg_end_wait_s_);
-  json.value("leg_time_budget_s", config_.explorer.leg_time_budget);
-  json.value("blacklisted", explorer_.blacklist().size());
+  MissionReport report;
+  report.progress = progress();
+  report.max_flight_time = config_.max_flight_time;
+  report.holds = stats_.get("holds");
+  report.uav = uav_;
+  report.tally = supervisor_.tally();
+  report.ises = frontier_.ises.size();
+  report.ises_inside = frontier_.insideCount();
+  report.explorer = explorer_.stats();
+  report.leg_end_wait_s = leg_end_wait_s_;
+  report.leg_time_budget = config_.explorer.leg_time_budget;
+  report.blacklisted = explorer_.blacklist().size();
   // What explore_sim.launch derived from the scene for the keys its config left out (nbv_scene).
-  std::string scene_defaults;
-  if (ros::param::get("/scene_defaults", scene_defaults)) json.value("scene_defaults", scene_defaults);
-  json.endObject();
-  const std::string path = config_.report_directory + "/mission_report.json";
-  std::ofstream out(path);
-  out << json.str();
-  if (!out) ROS_WARN("nbv_planner: cannot write %s", path.c_str());
+  if (std::string derived; ros::param::get("/scene_defaults", derived)) report.scene_defaults = derived;
+  if (Status s = writeMissionReport(config_.report_directory, report); !s) {
+    ROS_WARN("nbv_planner: %s", s.message().c_str());
+  }
 }
 
 double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points) {
-  std_msgs::Header header;
-  header.stamp = ros::Time::now();
-  header.frame_id = config_.world_frame;
+  const std_msgs::Header header = this->header();
   nav_msgs::Path path;
   const trajectory_msgs::MultiDOFJointTrajectory trajectory =
       trajectoryMsg(header, points, config_.speed, config_.yaw_rate, &path);
   trajectory_pub_.publish(trajectory);
   path_pub_.publish(path);
-  std::vector<std::pair<double, Eigen::Vector3d>> reference;
-  for (size_t i = 0; i < points.size(); ++i) {
-    reference.emplace_back(trajectory.points[i].time_from_start.toSec(), points[i].head<3>());
-  }
-  monitor_.setReference(std::move(reference));
+  monitor_.setReference(trajectoryReference(trajectory));
   sent_at_ = header.stamp;
   return trajectory.points.empty() ? 0.0 : trajectory.points.back().time_from_start.toSec();
 }
 
-void NbvPlannerServer::publishStatus() {
-  surface_nbv::PlannerStatus msg;
-  msg.header.stamp = ros::Time::now();
-  msg.header.frame_id = config_.world_frame;
-  msg.state = stateName();
-  msg.reason = reason_;
-  msg.message = message_;
-  msg.ises = frontier_.ises.size();
-  msg.ises_inside = frontier_.insideCount();
-  msg.ises_remaining = frontier_.remaining;
-  msg.clusters = frontier_.clusters.size();
-  const ExplorerStats& s = explorer_.stats();
-  msg.tour_viewpoints = explorer_.tour().size();
-  msg.tour_cost = s.tour_cost;
-  msg.path_length = path_length_;
-  msg.flight_time = flightTime();
-  msg.blacklisted = explorer_.blacklist().size();
-  msg.full_recomputes = s.full_recomputes;
-  msg.local_updates = s.local_updates;
-  msg.legs = s.legs;
-  msg.leg_failures = s.leg_failures;
-  msg.graph_ms = last_timings_.graph_ms;
-  msg.tour_ms = last_timings_.tour_ms;
-  msg.path_ms = last_timings_.path_ms;
-  msg.total_ms = last_timings_.total_ms;
-  status_pub_.publish(msg);
+MissionProgress NbvPlannerServer::progress() const {
+  return {stateName(), reason_, message_, flightTime(), path_length_};
 }
 
-void NbvPlannerServer::publishMarkers() {
-  // Nobody looks (a headless run): building them, the roadmap's edges above
-  // all, would only take time from the decisions.
-  if (markers_pub_.getNumSubscribers() == 0) return;
-  std_msgs::Header header;
-  header.stamp = ros::Time::now();
-  header.frame_id = config_.world_frame;
-  // The roadmap is copied out of OMPL whole (bench_explorer BM_RoadmapEdges):
-  // at most every kRoadmapMarkerPeriod wall seconds. rviz keeps a marker until
-  // one of the same namespace and id replaces it, so the arrays between copies
-  // leave it out rather than send up to 40,000 points again.
-  const ros::WallTime wall = ros::WallTime::now();
-  const bool roadmap = roadmap_marker_wall_.isZero() || (wall - roadmap_marker_wall_).toSec() >= kRoadmapMarkerPeriod;
-  visualization_msgs::MarkerArray markers = plannerMarkers(header, explorer_, uav_, roadmap);
-  for (const visualization_msgs::Marker& m : markers.markers) {
-    // An empty roadmap (nothing planned yet) is copied again on the next array.
-    if (m.ns == "roadmap" && !m.points.empty()) roadmap_marker_wall_ = wall;
-  }
-  markers_pub_.publish(markers);
+void NbvPlannerServer::publishStatus() {
+  status_pub_.publish(plannerStatusMsg(header(), progress(), frontier_, explorer_, last_timings_));
 }
 
 bool NbvPlannerServer::onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-  const State before = state_;
   res.success = true;
-  if (before == State::kRunning || before == State::kHovering) {
+  if (flying()) {
     res.message = std::string("already ") + stateName();
     return true;
   }
-  if (before == State::kDone) {
+  if (state_ == State::kDone) {
     explorer_.reset();
     supervisor_.reset();
     have_mission_start_ = false;  // a new mission, a new flight clock
@@ -449,9 +389,8 @@ bool NbvPlannerServer::onReplan(std_srvs::Trigger::Request&, std_srvs::Trigger::
   explorer_.replan();
   frontier_new_ = have_frontier_;
   res.success = true;
-  res.message = state_ == State::kRunning || state_ == State::kHovering ? "recomputing the tour at the next tick"
-                                                                         : std::string("tour recomputed once ") +
-                                                                               stateName() + " ends (~start)";
+  res.message = flying() ? "recomputing the tour at the next tick"
+                         : std::string("tour recomputed once ") + stateName() + " ends (~start)";
   return true;
 }
 

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
+#include <ros/ros.h>
 #include <tf2_eigen/tf2_eigen.h>
 
+#include "surface_nbv/FilePath.h"
 #include "surface_nbv/util/angles.h"
 
 namespace surface_nbv {
@@ -82,6 +85,16 @@ trajectory_msgs::MultiDOFJointTrajectory trajectoryMsg(const std_msgs::Header& h
   return trajectory;
 }
 
+std::vector<std::pair<double, Eigen::Vector3d>> trajectoryReference(
+    const trajectory_msgs::MultiDOFJointTrajectory& trajectory) {
+  std::vector<std::pair<double, Eigen::Vector3d>> reference;
+  for (const trajectory_msgs::MultiDOFJointTrajectoryPoint& point : trajectory.points) {
+    const geometry_msgs::Vector3& p = point.transforms.front().translation;
+    reference.emplace_back(point.time_from_start.toSec(), Eigen::Vector3d(p.x, p.y, p.z));
+  }
+  return reference;
+}
+
 visualization_msgs::MarkerArray plannerMarkers(const std_msgs::Header& header, const Explorer& explorer,
                                                const Eigen::Vector4d& uav, bool with_roadmap) {
   visualization_msgs::MarkerArray markers;
@@ -130,6 +143,62 @@ visualization_msgs::MarkerArray plannerMarkers(const std_msgs::Header& header, c
   }
   markers.markers.push_back(graph);
   return markers;
+}
+
+PlannerMarkerPublisher::PlannerMarkerPublisher(ros::NodeHandle& nh, const std::string& topic, double roadmap_period)
+    : pub_(nh.advertise<visualization_msgs::MarkerArray>(topic, 1, true)), roadmap_period_(roadmap_period) {}
+
+void PlannerMarkerPublisher::publish(const std_msgs::Header& header, const Explorer& explorer,
+                                     const Eigen::Vector4d& uav) {
+  if (pub_.getNumSubscribers() == 0) return;
+  const ros::WallTime wall = ros::WallTime::now();
+  const bool roadmap = roadmap_wall_.isZero() || (wall - roadmap_wall_).toSec() >= roadmap_period_;
+  const visualization_msgs::MarkerArray markers = plannerMarkers(header, explorer, uav, roadmap);
+  for (const visualization_msgs::Marker& m : markers.markers) {
+    if (m.ns == "roadmap" && !m.points.empty()) roadmap_wall_ = wall;
+  }
+  pub_.publish(markers);
+}
+
+surface_nbv::PlannerStatus plannerStatusMsg(const std_msgs::Header& header, const MissionProgress& progress,
+                                            const Frontier& frontier, const Explorer& explorer,
+                                            const ExplorerTimings& timings) {
+  surface_nbv::PlannerStatus msg;
+  msg.header = header;
+  msg.state = progress.state;
+  msg.reason = progress.reason;
+  msg.message = progress.message;
+  msg.ises = frontier.ises.size();
+  msg.ises_inside = frontier.insideCount();
+  msg.ises_remaining = frontier.remaining;
+  msg.clusters = frontier.clusters.size();
+  const ExplorerStats& s = explorer.stats();
+  msg.tour_viewpoints = explorer.tour().size();
+  msg.tour_cost = s.tour_cost;
+  msg.path_length = progress.path_length;
+  msg.flight_time = progress.flight_time;
+  msg.blacklisted = explorer.blacklist().size();
+  msg.full_recomputes = s.full_recomputes;
+  msg.local_updates = s.local_updates;
+  msg.legs = s.legs;
+  msg.leg_failures = s.leg_failures;
+  msg.graph_ms = timings.graph_ms;
+  msg.tour_ms = timings.tour_ms;
+  msg.path_ms = timings.path_ms;
+  msg.total_ms = timings.total_ms;
+  return msg;
+}
+
+void saveMissionFiles(const std::string& save_map_service, const std::string& export_mesh_service) {
+  for (const auto& [service, file] : {std::make_pair(save_map_service, std::string("mission.tsdf")),
+                                      std::make_pair(export_mesh_service, std::string("mission.ply"))}) {
+    if (service.empty()) continue;
+    surface_nbv::FilePath call;
+    call.request.path = file;
+    if (!ros::service::call(service, call) || call.response.code != 0) {
+      ROS_WARN("nbv_planner: %s(%s) failed: %s", service.c_str(), file.c_str(), call.response.message.c_str());
+    }
+  }
 }
 
 }  // namespace surface_nbv

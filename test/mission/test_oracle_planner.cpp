@@ -1,6 +1,7 @@
 // The oracle reference path on the built-in 4 m box (config/box.yaml): it
 // covers the coverable surface, keeps its viewpoints and path clear of the
-// true mesh, and repeats exactly with a seed.
+// true mesh, and repeats exactly with a seed. In the closed room
+// (config/room.yaml) it keeps only the viewpoints the start reaches.
 #include "surface_nbv/mission/oracle_planner.h"
 
 #include <gtest/gtest.h>
@@ -132,6 +133,42 @@ TEST_F(OracleOnBox, PlanRefusesABadConfig) {
   EXPECT_FALSE(r.status.ok());
   EXPECT_NE(r.status.message().find("path_iterations"), std::string::npos) << r.status.message();
   EXPECT_TRUE(r.viewpoints.empty());
+}
+
+// The room (10 x 8 x 4 m, a pillar inside) in bounds reaching 3-4 m past
+// its walls and 2 m over its ceiling: the candidates outside, in front of the
+// walls' outer faces, are clear but not reachable from the start inside.
+TEST(OracleInTheRoom, KeepsOnlyTheViewpointsInsideTheRoom) {
+  MissionConfig mission;
+  ASSERT_TRUE(loadMissionConfig(std::string(NBV_SOURCE_DIR) + "/config/room.yaml", &mission).ok());
+  TriangleMesh mesh;
+  ASSERT_TRUE(loadScene(mission.scene, &mesh).ok());
+  std::unique_ptr<RaycastScene> scene;
+  ASSERT_TRUE(RaycastScene::create(mesh, &scene).ok());
+  OracleConfig config = oracleConfigFrom(mission);
+  config.seed = 1;
+  OraclePlanner oracle(config, mesh, *scene);
+  const OracleResult r = oracle.plan();
+  ASSERT_TRUE(r.status.ok()) << r.status.message();
+  EXPECT_GT(r.candidates, 0u);
+  EXPECT_LT(r.candidates, r.candidates_built);
+  ASSERT_FALSE(r.viewpoints.empty());
+  for (const Eigen::Vector4d& q : r.viewpoints) {
+    EXPECT_LT(std::abs(q.x()), 5.0) << q.transpose();
+    EXPECT_LT(std::abs(q.y()), 4.0) << q.transpose();
+    EXPECT_LT(q.z(), 4.0) << q.transpose();
+  }
+  for (const Eigen::Vector4d& p : r.path) {
+    EXPECT_TRUE(std::abs(p.x()) < 5.0 && std::abs(p.y()) < 4.0 && p.z() < 4.0) << p.transpose();
+  }
+  EXPECT_GT(r.coveredFraction(), 0.9);
+
+  // A start inside the pillar is refused, nothing flooded from it.
+  config.start = Eigen::Vector4d(2.0, 1.0, 2.0, 0.0);
+  const OracleResult pillar = OraclePlanner(config, mesh, *scene).plan();
+  EXPECT_FALSE(pillar.status.ok());
+  EXPECT_NE(pillar.status.message().find("start"), std::string::npos) << pillar.status.message();
+  EXPECT_TRUE(pillar.viewpoints.empty());
 }
 
 }  // namespace

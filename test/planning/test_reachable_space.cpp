@@ -70,14 +70,20 @@ TEST(ReachableSpace, NoClearSeedMeansNothingIsKnown) {
 
 namespace {
 
-// The fill as written first: a flood over cellCentreDistance() queries.
-std::vector<uint8_t> referenceFill(const CollisionMap& map, const Eigen::Vector3i& start, double clear) {
+// The fill as written first: a flood over cellCentreDistance() queries, or
+// with `planner_test` over isFree() queries at the cells' centres (as the
+// oracle's own flood was written).
+std::vector<uint8_t> referenceFill(const CollisionMap& map, const Eigen::Vector3i& start, double clear,
+                                   const Eigen::Vector3d& origin = Eigen::Vector3d::Zero(), bool planner_test = false) {
   const Eigen::Vector3i n = map.gridCells();
   auto at = [&](const Eigen::Vector3i& c) { return static_cast<size_t>((c.x() * n.y() + c.y()) * n.z() + c.z()); };
   std::vector<uint8_t> in(static_cast<size_t>(n.prod()), 0);
+  auto isClear = [&](const Eigen::Vector3i& c) {
+    if (!planner_test) return map.cellCentreDistance(c) >= clear;
+    return map.isFree(origin + map.cellSize() * (c.cast<double>().array() + 0.5).matrix(), clear);
+  };
   auto open = [&](const Eigen::Vector3i& c) {
-    return (c.array() >= 0).all() && (c.array() < n.array()).all() && in[at(c)] == 0 &&
-           map.cellCentreDistance(c) >= clear;
+    return (c.array() >= 0).all() && (c.array() < n.array()).all() && in[at(c)] == 0 && isClear(c);
   };
   std::vector<Eigen::Vector3i> stack;
   if (open(start)) {
@@ -160,4 +166,41 @@ TEST(ReachableSpace, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), 0);
   map.clearCells(-1.0, &mask);
   EXPECT_EQ(std::count(mask.begin(), mask.end(), 1), n.prod()) << "every cell is at least 0 m clear";
+}
+
+// Clear::kPlannerTest floods exactly the cells whose centre passes the path
+// planner's isFree() test, fewer than the centre distances pass (the
+// obstacles' cubes and the bounds' faces count), and the explorer's default
+// fill is the centre-distance one.
+TEST(ReachableSpace, PlannerTestFloodsTheCellsWhoseCentreIsFree) {
+  WallWorld world(true);
+  const CollisionMap& map = world.collision();
+  const Eigen::Vector3d from(-3.0, -3.0, 2.5);
+  const Eigen::Vector3i n = map.gridCells();
+  Eigen::Vector3i start;
+  for (int a = 0; a < 3; ++a) start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
+  for (const double clear : {0.5, 1.0, 1.3}) {
+    ReachableSpace planner_test, centres;
+    planner_test.fill(map, world.bounds(), from, clear, 0.0, 2.0, ReachableSpace::Clear::kPlannerTest);
+    centres.fill(map, world.bounds(), from, clear);
+    ASSERT_TRUE(planner_test.seeded()) << clear;
+    const std::vector<uint8_t> expected = referenceFill(map, start, clear, world.bounds().min, true);
+    const std::vector<uint8_t> by_centres = referenceFill(map, start, clear);
+    size_t count = 0, wrong = 0, centre_count = 0, centre_wrong = 0;
+    for (int x = 0; x < n.x(); ++x)
+      for (int y = 0; y < n.y(); ++y)
+        for (int z = 0; z < n.z(); ++z) {
+          const Eigen::Vector3i c(x, y, z);
+          const size_t i = static_cast<size_t>((x * n.y() + y) * n.z() + z);
+          count += expected[i];
+          wrong += planner_test.filled(c) != (expected[i] != 0) ? 1 : 0;
+          centre_count += by_centres[i];
+          centre_wrong += centres.filled(c) != (by_centres[i] != 0) ? 1 : 0;
+        }
+    EXPECT_EQ(wrong, 0u) << "clearance " << clear;
+    EXPECT_EQ(planner_test.size(), count) << "clearance " << clear;
+    EXPECT_GT(count, 100u) << clear;
+    EXPECT_EQ(centre_wrong, 0u) << "clearance " << clear;
+    EXPECT_LT(count, centre_count) << "clearance " << clear;
+  }
 }

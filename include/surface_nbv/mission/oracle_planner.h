@@ -11,7 +11,8 @@
 //      +n and -n (elevation clamped into the vertical FOV: 4-DOF UAV, level
 //      camera; a pose in collision is retried at the FOV's upper, then lower
 //      edge), facing the sample; kept when isFree(p, radius + cell) and
-//      reachable from the start by a flood fill over clear collision cells,
+//      reachable from the start (ReachableSpace: a flood fill over the
+//      collision cells whose centre passes the path planner's isFree test),
 //   4. visibility: each candidate's depth image (DepthRenderer, Embree) sees
 //      a target that projects inside it, within range, at the rendered depth
 //      (within depth_tolerance_voxels) and under max_incidence_deg,
@@ -118,7 +119,6 @@ class OraclePlanner {
   struct Candidates;
   void say(const std::string& line) const;
   void buildMap();
-  std::vector<uint8_t> reachableCells() const;
   void buildCandidates(Candidates* c, OracleResult* r) const;
   std::vector<std::vector<uint32_t>> visibility(const Candidates& c, const std::vector<Eigen::Vector3d>& targets,
                                                 const std::vector<Eigen::Vector3d>& normals) const;

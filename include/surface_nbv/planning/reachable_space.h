@@ -8,6 +8,13 @@
 // rarely finds within its budget anyway, and so it tells at once that a
 // target behind them is not worth the planner's iteration budget. The
 // explorer fills once per map version, before the first leg it plans.
+//
+// Clear::kPlannerTest judges each cell by the path planner's own test at its
+// centre instead, CollisionMap::isFree(centre, radius - slack): the distance
+// to the obstacle cubes rather than their centres (about half a cell
+// stricter) and to the bounds' faces. A query per cell, slower; the oracle
+// (mission/oracle_planner.h) fills this way, so that the viewpoints it keeps
+// in narrow passages are ones the planner can fly to.
 #pragma once
 
 #include <cstdint>
@@ -22,12 +29,17 @@ namespace surface_nbv {
 
 class ReachableSpace {
  public:
+  enum class Clear {
+    kCentreDistance,  // cellCentreDistance() >= radius - slack, in one pass over the transform (the explorer's)
+    kPlannerTest,     // CollisionMap::isFree(centre, radius - slack)
+  };
+
   // Fills from the cell of `from` (or, if that cell is not clear, from the
   // clear cells within `seed_radius` of it). `bounds` are the map's: cell
   // (i, j, k) covers bounds.min + cellSize * [i, i + 1) and so on. Without a
   // clear seed cell nothing is known: reachable() then answers true.
   void fill(const CollisionMap& map, const AlignedBox& bounds, const Eigen::Vector3d& from, double radius,
-            double slack = 0.0, double seed_radius = 2.0);
+            double slack = 0.0, double seed_radius = 2.0, Clear clear = Clear::kCentreDistance);
   // Whether p's cell, or one of its 6 neighbours, was filled (true when the
   // last fill found no seed; false outside the grid).
   bool reachable(const Eigen::Vector3d& p) const;

@@ -43,13 +43,15 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
-#include <visualization_msgs/Marker.h>
+#include <std_msgs/Header.h>
 
 #include "surface_nbv/SurfaceFrontier.h"
 #include "surface_nbv/planning/explorer.h"
+#include "surface_nbv/planning/mission_report.h"
 #include "surface_nbv/planning/mission_supervisor.h"
 #include "surface_nbv/ros/latest_odometry.h"
 #include "surface_nbv/ros/map_feed.h"
+#include "surface_nbv/ros/planner_messages.h"
 #include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/ros/stats_reporter.h"
 #include "surface_nbv/surface/frontier.h"
@@ -76,14 +78,22 @@ class NbvPlannerServer {
   void act(const ExplorerDecision& d);
   // Holds the current pose; HOVERING (or keeps STOPPED / DONE) with `why`.
   void hold(const std::string& why);
+  // Holds for `reason` (a stale input), unless already HOVERING for it.
+  void holdFor(const std::string& reason, const std::string& why);
   // Sends a hold at the UAV's pose (false without odometry: nothing sent) and
   // forgets the leg it was flying, here and in the explorer, so the next
   // decision plans a new one instead of continuing a leg nobody flies.
   bool cancelLeg();
   // Holds, DONE, the report, the map and mesh; reason_ and message_ say why.
   void finish();
+  // RUNNING or HOVERING: a mission is being flown.
+  bool flying() const;
   // s of odometry time since the first odometry of the mission, 0 before it.
   double flightTime() const;
+  // The state, reason, message, flight time and path flown (status and report).
+  MissionProgress progress() const;
+  // Stamped now, in world_frame.
+  std_msgs::Header header() const;
   // What the supervisor is told at ROS time `now`.
   SupervisorInput input(const ros::Time& now) const;
   // Publishes a leg (or the take-off spin) from its first point and tells the supervisor.
@@ -95,7 +105,7 @@ class NbvPlannerServer {
   // A leg decided from uav_ starts where the UAV is now (restartLeg, leg_restart_reach).
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
   void publishStatus();
-  void publishMarkers();
+  // mission_report.json into report_directory (when set): planning/mission_report.h.
   void writeReport() const;
   const char* stateName() const;
 
@@ -107,8 +117,9 @@ class NbvPlannerServer {
   Explorer explorer_;
   MissionSupervisor supervisor_;  // take-off, leg ends, decisions, limits, tally (mission_supervisor.h)
   ReferenceMonitor monitor_;      // is the UAV following the last trajectory sent (max_tracking_error)?
+  PlannerMarkerPublisher markers_;  // planner/markers, while someone subscribes
   ros::Subscriber frontier_sub_, odometry_sub_;
-  ros::Publisher trajectory_pub_, path_pub_, status_pub_, markers_pub_;
+  ros::Publisher trajectory_pub_, path_pub_, status_pub_;
   ros::ServiceServer start_srv_, stop_srv_, replan_srv_;
   ros::WallTimer timer_;
 
@@ -125,7 +136,6 @@ class NbvPlannerServer {
   double path_length_ = 0.0;
   bool took_off_ = false;          // the take-off was asked for (once per node: not again after ~start)
   ros::Time sent_at_;  // the stamp of the last trajectory sent
-  ros::WallTime roadmap_marker_wall_;  // when publishMarkers last copied the roadmap (0: never)
   std::string reason_ = "none", message_;
   ExplorerTimings last_timings_;
 };
