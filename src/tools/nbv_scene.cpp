@@ -8,8 +8,8 @@
 //   nbv_scene --list
 //
 // --derive-yaml FILE writes the keys the config (if any) leaves out, derived
-// from the scene, as YAML (explore_sim.launch loads it after the config);
-// a scene that cannot be flown is then an error.
+// from the scene, as YAML (explore_sim.launch loads it after the config).
+// A scene that cannot be flown is then an error.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>

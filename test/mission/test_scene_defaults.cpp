@@ -221,7 +221,7 @@ TEST(SceneDefaults, GivenKeysAlwaysWin) {
   EXPECT_NE(d.warnings[0].find("start_free_radius"), std::string::npos) << d.warnings[0];
 }
 
-// Over a config file only the keys that follow the scene's size are lent;
+// Over a config file only the keys that follow the scene's size are lent:
 // every shipped config of a built-in scene derives nothing, so it flies as
 // it did.
 TEST(SceneDefaults, AConfigFileKeepsTheCodesDefaultsBeyondTheSizeKeys) {

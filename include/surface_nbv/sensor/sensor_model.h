@@ -3,17 +3,17 @@
 // measure the same way:
 //   - axial noise, Gaussian with sigma(z) = noise_sigma0 + noise_sigma1 z
 //     + CameraConfig::noise_k z^2: stereo-like (k z^2, the disparity error
-//     of a fixed baseline) and ToF-like (constant + linear) in one model;
+//     of a fixed baseline) and ToF-like (constant + linear) in one model.
 //   - lateral edge noise: each pixel measures the depth of a pixel shifted
 //     by a Gaussian offset of lateral_noise_px (rounded to whole pixels), so
-//     flat surfaces barely move and depth edges fray (flying pixels);
+//     flat surfaces barely move and depth edges fray (flying pixels).
 //   - invalid pixels (NaN: no measurement, never carves free space):
 //     grazing angles (past grazing_dropout_deg of incidence the dropout
 //     probability grows linearly to 1 at 90 deg), random dropouts
 //     (dropout_rate per pixel and frame) and dark / specular-like patches:
 //     a seeded share dropout_patch_fraction of the world's
 //     dropout_patch_size cubes, fixed on the surface whatever the view,
-//     whose pixels drop with probability dropout_patch_rate in every frame;
+//     whose pixels drop with probability dropout_patch_rate in every frame.
 //   - quantisation: depths rounded to `quantization` metres (0.001 is what
 //     16UC1 millimetres carry).
 // Every draw is a pure function of (CameraConfig::noise_seed, frame index,
