@@ -66,17 +66,18 @@ void MissionSupervisor::reset() {
 }
 
 std::vector<Eigen::Vector4d> MissionSupervisor::takeOff(const Eigen::Vector4d& uav) {
-  if (recording_) {
-    SupervisorInput in;
-    in.uav = uav;
-    recording_->push_back(call(SupervisorCall::Kind::kTakeOff, in));
-  }
   std::vector<Eigen::Vector4d> spin;
   const double turn = config_.flight.start_spin;
   if (turn > 0.0) {
     // Quarter turns at most, so the yaw interpolates the way it is meant to.
     const int steps = std::max(1, static_cast<int>(std::ceil(turn / (0.5 * M_PI))));
     for (int k = 1; k <= steps; ++k) spin.emplace_back(uav.x(), uav.y(), uav.z(), uav.w() + turn * k / steps);
+  }
+  if (recording_) {
+    SupervisorInput in;
+    in.uav = uav;
+    recording_->push_back(call(SupervisorCall::Kind::kTakeOff, in));
+    recording_->back().spin = spin.size();
   }
   spinning_ = !spin.empty();
   // Without a spin the first poll decides (the period's clock starts at 0).

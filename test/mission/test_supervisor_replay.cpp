@@ -1,27 +1,19 @@
 // The headless mission takes the decisions its MissionSupervisor gives, and
-// only those: a mission's calls, replayed through a fresh supervisor with
-// the same rules, get the same answers, the same tally and the same end.
-// (nbv_planner drives the same class; its rostests fly it: mission_*.test.)
+// only those: a mission's calls, written to supervisor_calls.csv, read back
+// and replayed through a fresh supervisor with the same rules, get the same
+// answers, the same tally and the same end. (nbv_planner's calls get the
+// same replay in test_mission_node, with the rules read from its parameters.)
 #include "surface_nbv/mission/mission_runner.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
+
+#include "surface_nbv/planning/supervisor_calls.h"
 
 #include "surface_nbv/sim/procedural_scenes.h"
 
 using namespace surface_nbv;
-
-namespace {
-
-ExplorerDecision recorded(const SupervisorCall& c) {
-  ExplorerDecision d;
-  d.action = c.action;
-  d.reason = c.reason;
-  d.message = c.message;
-  d.timings.total_ms = c.decision_ms;
-  return d;
-}
-
-}  // namespace
 
 TEST(SupervisorReplay, AHeadlessMissionReplaysToTheSameDecisions) {
   MissionConfig config;
@@ -55,22 +47,21 @@ TEST(SupervisorReplay, AHeadlessMissionReplaysToTheSameDecisions) {
   EXPECT_EQ(result.tally.legs_sent, legs);
   ASSERT_EQ(calls.front().kind, SupervisorCall::Kind::kTakeOff);
 
+  // Through the file, as nbv_planner's calls come to test_mission_node.
+  const std::string file = (std::filesystem::temp_directory_path() / "test_supervisor_replay_calls.csv").string();
+  ASSERT_TRUE(writeSupervisorCalls(file, calls).ok());
+  std::vector<SupervisorCall> read;
+  ASSERT_TRUE(readSupervisorCalls(file, &read).ok());
+  std::filesystem::remove(file);
+  ASSERT_EQ(read.size(), calls.size());
+
   MissionSupervisor replay(config.supervisorConfig());
-  size_t i = 0;
-  for (const SupervisorCall& c : calls) {
-    switch (c.kind) {
-      case SupervisorCall::Kind::kTakeOff: EXPECT_FALSE(replay.takeOff(c.in.uav).empty()); break;
-      case SupervisorCall::Kind::kLegSent: replay.legSent(c.goal, c.t_end); break;
-      case SupervisorCall::Kind::kLegDropped: replay.legDropped(); break;
-      case SupervisorCall::Kind::kPoll: ASSERT_EQ(replay.poll(c.in), c.step) << "call " << i << " at t = " << c.in.t; break;
-      case SupervisorCall::Kind::kDecided: replay.decided(recorded(c), c.in); break;
-      case SupervisorCall::Kind::kRecord: replay.record(recorded(c)); break;
-    }
-    ++i;
-  }
+  const Status replayed = replaySupervisorCalls(read, &replay);
+  ASSERT_TRUE(replayed.ok()) << replayed.message();
   EXPECT_EQ(replay.tally().fly, result.tally.fly);
   EXPECT_EQ(replay.tally().hover, result.tally.hover);
   EXPECT_EQ(replay.tally().legs_dropped, result.tally.legs_dropped);
+  EXPECT_EQ(replay.tally().decision_ms, result.tally.decision_ms);
   EXPECT_EQ(replay.done(), result.end_reason == replay.endReason() && !replay.endReason().empty());
   if (!replay.done()) {
     EXPECT_EQ(replay.limitReached(result.flight_time, result.path_length), result.end_reason);
@@ -81,13 +72,14 @@ TEST(SupervisorReplay, AHeadlessMissionReplaysToTheSameDecisions) {
   SupervisorConfig other = config.supervisorConfig();
   other.frontier_period = 3.0 * config.frontier_period;
   MissionSupervisor slow(other);
-  size_t differ = 0;
-  for (const SupervisorCall& c : calls) {
-    if (c.kind == SupervisorCall::Kind::kTakeOff) slow.takeOff(c.in.uav);
-    if (c.kind == SupervisorCall::Kind::kLegSent) slow.legSent(c.goal, c.t_end);
-    if (c.kind == SupervisorCall::Kind::kLegDropped) slow.legDropped();
-    if (c.kind == SupervisorCall::Kind::kPoll) differ += slow.poll(c.in) != c.step;
-    if (c.kind == SupervisorCall::Kind::kDecided) slow.decided(recorded(c), c.in);
-  }
-  EXPECT_GT(differ, 0u);
+  const Status differs = replaySupervisorCalls(read, &slow);
+  EXPECT_FALSE(differs.ok());
+  EXPECT_NE(differs.message().find("recorded decide"), std::string::npos) << differs.message();
+  // Nor does one without the take-off spin.
+  SupervisorConfig no_spin = config.supervisorConfig();
+  no_spin.flight.start_spin = 0.0;
+  MissionSupervisor still(no_spin);
+  const Status spin = replaySupervisorCalls(read, &still);
+  EXPECT_FALSE(spin.ok());
+  EXPECT_NE(spin.message().find("call 0 (take_off"), std::string::npos) << spin.message();
 }

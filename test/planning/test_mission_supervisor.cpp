@@ -1,11 +1,16 @@
 // The mission's rules (planning/mission_supervisor.h): take-off spin, leg
 // ends (tracker, settle, lookahead), decisions by period or new frontier,
-// limits, the tally and its report keys.
+// limits, the tally and its report keys; the calls as a file
+// (planning/supervisor_calls.h).
 #include "surface_nbv/planning/mission_supervisor.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "surface_nbv/planning/supervisor_calls.h"
 
 using namespace surface_nbv;
 
@@ -227,4 +232,115 @@ TEST(MissionSupervisor, RecordsEveryCallForAReplay) {
   EXPECT_EQ(calls[3].kind, SupervisorCall::Kind::kDecided);
   EXPECT_EQ(calls[3].action, ExplorerAction::kHover);
   EXPECT_EQ(calls[4].kind, SupervisorCall::Kind::kLegDropped);
+}
+
+namespace {
+
+std::string tempFile(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("test_mission_supervisor_" + name)).string();
+}
+
+}  // namespace
+
+TEST(SupervisorCalls, AFileReadsBackToTheCallsItWasWrittenFrom) {
+  MissionSupervisor s(headless(1.0));
+  std::vector<SupervisorCall> calls;
+  s.setRecording(&calls);
+  s.legSent(s.takeOff(Eigen::Vector4d(1.0 / 3.0, -2e-7, 4.5, M_PI)).back(), 12.345678901234567);
+  SupervisorInput end = at(12.0, Eigen::Vector4d(0.1, 0.2, 0.3, -0.7));
+  end.tracker_finished = true;
+  end.has_target = true;
+  end.path_length = 7.25;
+  s.poll(end);
+  ExplorerDecision d = decision(ExplorerAction::kDone, ReplanReason::kComplete, 17.5);
+  d.message = "no ISE of C_ins remains, 3 outside\nsecond line";
+  s.decided(d, end);
+  s.record(decision(ExplorerAction::kHover, ReplanReason::kPathBlocked));
+  s.legDropped();
+  ASSERT_EQ(calls.size(), 6u);
+  EXPECT_EQ(calls[0].spin, 5u);  // 6.2832 rad is a hair over four quarter turns
+
+  const std::string file = tempFile("calls.csv");
+  ASSERT_TRUE(writeSupervisorCalls(file, calls).ok());
+  std::vector<SupervisorCall> read;
+  const Status r = readSupervisorCalls(file, &read);
+  std::filesystem::remove(file);
+  ASSERT_TRUE(r.ok()) << r.message();
+  ASSERT_EQ(read.size(), calls.size());
+  for (size_t i = 0; i < calls.size(); ++i) {
+    const SupervisorCall &a = calls[i], &b = read[i];
+    EXPECT_EQ(a.kind, b.kind) << i;
+    EXPECT_EQ(a.in.t, b.in.t) << i;
+    EXPECT_EQ(a.in.uav, b.in.uav) << i;  // exactly: 17 digits
+    EXPECT_EQ(a.in.path_length, b.in.path_length) << i;
+    EXPECT_EQ(a.in.tracker_finished, b.in.tracker_finished) << i;
+    EXPECT_EQ(a.in.has_target, b.in.has_target) << i;
+    EXPECT_EQ(a.goal, b.goal) << i;
+    EXPECT_EQ(a.t_end, b.t_end) << i;
+    EXPECT_EQ(a.step, b.step) << i;
+    EXPECT_EQ(a.spin, b.spin) << i;
+    EXPECT_EQ(a.action, b.action) << i;
+    EXPECT_EQ(a.reason, b.reason) << i;
+    EXPECT_EQ(a.decision_ms, b.decision_ms) << i;
+  }
+  EXPECT_EQ(read[3].message, "no ISE of C_ins remains, 3 outside second line");  // commas kept, the break a space
+
+  MissionSupervisor replay(headless(1.0));
+  ASSERT_TRUE(replaySupervisorCalls(read, &replay).ok());
+  EXPECT_TRUE(replay.done());
+  EXPECT_TRUE(replay.completed());
+  EXPECT_EQ(replay.endReason(), "complete: no ISE of C_ins remains, 3 outside second line");
+  EXPECT_EQ(replay.tally().hover, 1u);
+  EXPECT_EQ(replay.tally().legs_dropped, 0u);  // the leg's end was answered by the decision
+  // A poll recorded with another answer is named.
+  read[2].step = SupervisorStep::kWait;
+  MissionSupervisor other(headless(1.0));
+  const Status differs = replaySupervisorCalls(read, &other);
+  ASSERT_FALSE(differs.ok());
+  EXPECT_EQ(differs.message(), "call 2 (poll at t = 12): decide, recorded wait");
+}
+
+TEST(SupervisorCalls, AMalformedFileNamesItsFirstBadLine) {
+  const std::string good =
+      "poll,1,0,0,2,0,0,0,1,0,0,0,0,0,0,decide,0,continue,none,0,fine, with a comma";
+  const auto readRows = [](const std::vector<std::string>& rows, std::vector<SupervisorCall>* calls) {
+    const std::string file = tempFile("bad.csv");
+    std::ofstream(file) << [&] {
+      std::string text;
+      for (const std::string& r : rows) text += r + "\n";
+      return text;
+    }();
+    const Status s = readSupervisorCalls(file, calls);
+    std::filesystem::remove(file);
+    return s;
+  };
+  const std::string header =
+      "kind,t,x,y,z,yaw,path_length,tracker_finished,frontier_new,has_target,goal_x,goal_y,goal_z,goal_yaw,t_end,step,"
+      "spin,action,reason,decision_ms,message";
+  std::vector<SupervisorCall> calls(3);
+  ASSERT_TRUE(readRows({header, good}, &calls).ok());
+  ASSERT_EQ(calls.size(), 1u);
+  EXPECT_TRUE(calls[0].in.frontier_new);
+  EXPECT_EQ(calls[0].message, "fine, with a comma");
+  const struct {
+    std::vector<std::string> rows;
+    const char* error;
+  } cases[] = {
+      {{"kind,t"}, "line 1: expected the header"},
+      {{header, good, "poll,1,2"}, "line 3: expected 21 columns"},
+      {{header, "jump,1,0,0,2,0,0,0,1,0,0,0,0,0,0,decide,0,continue,none,0,"}, "line 2: unknown kind 'jump'"},
+      {{header, "poll,nan?,0,0,2,0,0,0,1,0,0,0,0,0,0,decide,0,continue,none,0,"}, "line 2: column 2 is not a number"},
+      {{header, "poll,1,0,0,2,0,0,2,1,0,0,0,0,0,0,decide,0,continue,none,0,"}, "line 2: column 8 expected 0 or 1"},
+      {{header, "poll,1,0,0,2,0,0,0,1,0,0,0,0,0,0,maybe,0,continue,none,0,"}, "line 2: unknown step 'maybe'"},
+      {{header, "take_off,1,0,0,2,0,0,0,1,0,0,0,0,0,0,wait,-1,continue,none,0,"}, "line 2: spin expected a count"},
+      {{header, "poll,1,0,0,2,0,0,0,1,0,0,0,0,0,0,decide,0,unknown,none,0,"}, "line 2: unknown action 'unknown'"},
+      {{header, "poll,1,0,0,2,0,0,0,1,0,0,0,0,0,0,decide,0,fly,sideways,0,"}, "line 2: unknown reason 'sideways'"},
+  };
+  for (const auto& c : cases) {
+    const Status s = readRows(c.rows, &calls);
+    ASSERT_FALSE(s.ok()) << c.error;
+    EXPECT_NE(s.message().find(c.error), std::string::npos) << s.message();
+    EXPECT_EQ(calls.size(), 1u) << "a bad file leaves the calls as they were";
+  }
+  EXPECT_FALSE(readSupervisorCalls(tempFile("missing.csv"), &calls).ok());
 }

@@ -101,6 +101,7 @@ struct SupervisorCall {
   Eigen::Vector4d goal = Eigen::Vector4d::Zero();  // kLegSent
   double t_end = 0.0;                 // kLegSent
   SupervisorStep step = SupervisorStep::kWait;      // kPoll: the answer
+  size_t spin = 0;                    // kTakeOff: the answer's waypoints
   ExplorerAction action = ExplorerAction::kContinue;  // kDecided, kRecord
   ReplanReason reason = ReplanReason::kNone;
   std::string message;
