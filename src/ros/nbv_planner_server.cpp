@@ -10,6 +10,7 @@
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/planning/leg_start.h"
 #include "surface_nbv/planning/mission_report.h"
+#include "surface_nbv/planning/supervisor_calls.h"
 #include "surface_nbv/ros/frontier_conversions.h"
 #include "surface_nbv/ros/planner_messages.h"
 
@@ -34,6 +35,7 @@ NbvPlannerServer::NbvPlannerServer(ros::NodeHandle nh, ros::NodeHandle priv, con
       supervisor_(config.supervisorConfig()),
       monitor_(config.max_tracking_error, config.off_track_time),
       markers_(nh_, "planner/markers", kRoadmapMarkerPeriod) {
+  supervisor_.setRecording(&supervisor_calls_);
   if (Status s = explorer_.setMap(&feed_.collision(), config_.map.bounds); !s) {
     ROS_ERROR("nbv_planner: the path planner refused the map: %s", s.message().c_str());
   }
@@ -326,6 +328,9 @@ void NbvPlannerServer::writeReport() const {
   if (Status s = writeMissionReport(config_.report_directory, report); !s) {
     ROS_WARN("nbv_planner: %s", s.message().c_str());
   }
+  if (Status s = writeSupervisorCalls(config_.report_directory + "/supervisor_calls.csv", supervisor_calls_); !s) {
+    ROS_WARN("nbv_planner: %s", s.message().c_str());
+  }
 }
 
 double NbvPlannerServer::publishTrajectory(const std::vector<Eigen::Vector4d>& points) {
@@ -357,6 +362,7 @@ bool NbvPlannerServer::onStart(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   if (state_ == State::kDone) {
     explorer_.reset();
     supervisor_.reset();
+    supervisor_calls_.clear();
     have_mission_start_ = false;  // a new mission, a new flight clock
     res.message = "running a new mission on the current map";
   } else {

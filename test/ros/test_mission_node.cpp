@@ -2,7 +2,10 @@
 // mission_time_limit.test): waits for planner/status DONE, checks the end
 // reason (~expected_reason, default complete), the flight time against
 // ~max_flight_time when set (within ~flight_time_tolerance s), the saved map,
-// mesh and report, then evaluates the mesh the planner had the mapper export.
+// mesh and report, replays the planner's supervisor_calls.csv through a
+// MissionSupervisor built from the planner's own parameters (the same
+// answers, tally and end as its report: it took the rules' decisions and no
+// others), then evaluates the mesh the planner had the mapper export.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,6 +19,8 @@
 
 #include "surface_nbv/PlannerStatus.h"
 #include "surface_nbv/eval/evaluator.h"
+#include "surface_nbv/planning/supervisor_calls.h"
+#include "surface_nbv/ros/planner_params.h"
 #include "surface_nbv/sim/mesh_io.h"
 #include "surface_nbv/sim/scene_source.h"
 
@@ -41,7 +46,7 @@ TEST(Mission, BoxMissionEndsWithTheExpectedReasonAndFiles) {
   priv.getParam("expected_reason", expected_reason);
   priv.getParam("max_flight_time", max_flight_time);
   priv.getParam("flight_time_tolerance", tolerance);
-  for (const char* f : {"/mission.ply", "/mission.tsdf", "/mission_report.json"}) std::filesystem::remove(out_dir + f);
+  for (const char* f : {"/mission.ply", "/mission.tsdf", "/mission_report.json", "/supervisor_calls.csv"}) std::filesystem::remove(out_dir + f);
   std::mutex mutex;
   PlannerStatus status;
   size_t running = 0;
@@ -80,6 +85,33 @@ TEST(Mission, BoxMissionEndsWithTheExpectedReasonAndFiles) {
   report << std::ifstream(out_dir + "/mission_report.json").rdbuf();
   EXPECT_NE(report.str().find("\"reason\": \"" + expected_reason + "\""), std::string::npos) << report.str();
   EXPECT_NEAR(jsonNumber(report.str(), "flight_time_s"), status.flight_time, 1e-3) << report.str();
+
+  // The planner's calls to its supervisor, replayed with the rules read from
+  // its parameters by the node's own loader.
+  PlannerNodeConfig planner;
+  ASSERT_TRUE(loadPlannerParams(ros::NodeHandle("/nbv_planner"), &planner).ok());
+  std::vector<SupervisorCall> calls;
+  const Status read = readSupervisorCalls(out_dir + "/supervisor_calls.csv", &calls);
+  ASSERT_TRUE(read.ok()) << read.message();
+  MissionSupervisor replay(planner.supervisorConfig());
+  const Status replayed = replaySupervisorCalls(calls, &replay);
+  EXPECT_TRUE(replayed.ok()) << replayed.message();
+  size_t polls = 0;
+  for (const SupervisorCall& c : calls) polls += c.kind == SupervisorCall::Kind::kPoll;
+  std::printf("replayed %zu supervisor calls (%zu polls, %zu decisions)\n", calls.size(), polls,
+              replay.tally().decisions());
+  EXPECT_GT(polls, 10u);
+  EXPECT_EQ(static_cast<double>(replay.tally().fly), jsonNumber(report.str(), "decisions_fly"));
+  EXPECT_EQ(static_cast<double>(replay.tally().hover), jsonNumber(report.str(), "decisions_hover"));
+  EXPECT_EQ(static_cast<double>(replay.tally().decisions()), jsonNumber(report.str(), "decisions"));
+  EXPECT_EQ(static_cast<double>(replay.tally().legs_sent), jsonNumber(report.str(), "legs_sent"));
+  if (replay.done()) {
+    EXPECT_EQ(replay.endReason().substr(0, expected_reason.size() + 1), expected_reason + ":") << replay.endReason();
+  } else {
+    EXPECT_FALSE(replay.limitReached(status.flight_time, status.path_length).empty())
+        << "the planner ended the mission (" << status.reason << ") where its rules had not";
+  }
+
   TriangleMesh box, reconstruction;
   SceneConfig scene;
   scene.scene = "box";

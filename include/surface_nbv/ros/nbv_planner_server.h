@@ -11,7 +11,8 @@
 //     Explorer::update and acts on the decision: a new leg -> planner/trajectory (MultiDOFJointTrajectory at
 //     `speed`, yaw timed by `yaw_rate`) and planner/path; hover -> a hold
 //     trajectory at the current pose (HOVERING); done -> hold, DONE, the
-//     mission report, the map and mesh saved through the mapper's services,
+//     mission report (and the supervisor's calls, to replay), the map and
+//     mesh saved through the mapper's services,
 //   - between frontiers, re-checks the current leg against the updated map
 //     (Explorer::checkPath) and re-plans it when blocked,
 //   - hovers when odometry is older than odometry_timeout or the map has not
@@ -105,7 +106,8 @@ class NbvPlannerServer {
   // A leg decided from uav_ starts where the UAV is now (restartLeg, leg_restart_reach).
   void startAtTheUav(std::vector<Eigen::Vector4d>* points);
   void publishStatus();
-  // mission_report.json into report_directory (when set): planning/mission_report.h.
+  // mission_report.json and supervisor_calls.csv into report_directory
+  // (when set): planning/mission_report.h, planning/supervisor_calls.h.
   void writeReport() const;
   const char* stateName() const;
 
@@ -116,6 +118,9 @@ class NbvPlannerServer {
   LatestOdometry latest_;
   Explorer explorer_;
   MissionSupervisor supervisor_;  // take-off, leg ends, decisions, limits, tally (mission_supervisor.h)
+  // Its calls this mission (one poll per tick, ~150 bytes each), for
+  // supervisor_calls.csv beside the report (planning/supervisor_calls.h).
+  std::vector<SupervisorCall> supervisor_calls_;
   ReferenceMonitor monitor_;      // is the UAV following the last trajectory sent (max_tracking_error)?
   PlannerMarkerPublisher markers_;  // planner/markers, while someone subscribes
   ros::Subscriber frontier_sub_, odometry_sub_;
