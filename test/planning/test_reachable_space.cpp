@@ -108,32 +108,48 @@ std::vector<uint8_t> referenceFill(const CollisionMap& map, const Eigen::Vector3
 
 }  // namespace
 
+// The wall world with its gap, flooded from (-3, -3, 2.5) (grid cell `start`).
+class FloodFromTheLeft : public ::testing::Test {
+ protected:
+  FloodFromTheLeft() : map(world.collision()), n(map.gridCells()) {
+    for (int a = 0; a < 3; ++a) {
+      start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
+    }
+  }
+  // The cells where `space` and the reference flood `expected` disagree;
+  // `count` gets the reference's cells.
+  size_t mismatches(const ReachableSpace& space, const std::vector<uint8_t>& expected, size_t* count) const {
+    size_t wrong = 0;
+    *count = 0;
+    for (int x = 0; x < n.x(); ++x)
+      for (int y = 0; y < n.y(); ++y)
+        for (int z = 0; z < n.z(); ++z) {
+          const bool want = expected[static_cast<size_t>((x * n.y() + y) * n.z() + z)] != 0;
+          *count += want ? 1 : 0;
+          wrong += space.filled(Eigen::Vector3i(x, y, z)) != want ? 1 : 0;
+        }
+    return wrong;
+  }
+
+  WallWorld world{true};
+  const CollisionMap& map;
+  const Eigen::Vector3d from{-3.0, -3.0, 2.5};
+  const Eigen::Vector3i n;
+  Eigen::Vector3i start;
+};
+
 // The fill reads the transform in one pass (CollisionMap::clearCells) and
 // floods a byte per cell: it fills exactly the cells the flood over
 // distance queries does, also at clearances that fall on a cell distance.
-TEST(ReachableSpace, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
-  WallWorld world(true);
-  const CollisionMap& map = world.collision();
-  const Eigen::Vector3d from(-3.0, -3.0, 2.5);
-  const Eigen::Vector3i n = map.gridCells();
-  Eigen::Vector3i start;
-  for (int a = 0; a < 3; ++a) start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
+TEST_F(FloodFromTheLeft, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
   const double h = map.cellSize();
   size_t differing_sizes = 0, previous = 0;
   for (const double clear : {0.0, 0.5, 1.0, 2.0 * h, std::sqrt(5.0) * h, 3.0 * h, 1.3}) {
     ReachableSpace space;
     space.fill(map, world.bounds(), from, clear);
     ASSERT_TRUE(space.seeded()) << clear;
-    const std::vector<uint8_t> expected = referenceFill(map, start, clear);
-    size_t count = 0, wrong = 0;
-    for (int x = 0; x < n.x(); ++x)
-      for (int y = 0; y < n.y(); ++y)
-        for (int z = 0; z < n.z(); ++z) {
-          const Eigen::Vector3i c(x, y, z);
-          const bool want = expected[static_cast<size_t>((x * n.y() + y) * n.z() + z)] != 0;
-          count += want ? 1 : 0;
-          wrong += space.filled(c) != want ? 1 : 0;
-        }
+    size_t count = 0;
+    const size_t wrong = mismatches(space, referenceFill(map, start, clear), &count);
     EXPECT_EQ(wrong, 0u) << "clearance " << clear;
     EXPECT_EQ(space.size(), count) << "clearance " << clear;
     EXPECT_GT(count, 100u) << clear;
@@ -172,31 +188,15 @@ TEST(ReachableSpace, FillsExactlyTheCellsOfAFloodOverDistanceQueries) {
 // planner's isFree() test, fewer than the centre distances pass (the
 // obstacles' cubes and the bounds' faces count), and the explorer's default
 // fill is the centre-distance one.
-TEST(ReachableSpace, PlannerTestFloodsTheCellsWhoseCentreIsFree) {
-  WallWorld world(true);
-  const CollisionMap& map = world.collision();
-  const Eigen::Vector3d from(-3.0, -3.0, 2.5);
-  const Eigen::Vector3i n = map.gridCells();
-  Eigen::Vector3i start;
-  for (int a = 0; a < 3; ++a) start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
+TEST_F(FloodFromTheLeft, PlannerTestFloodsTheCellsWhoseCentreIsFree) {
   for (const double clear : {0.5, 1.0, 1.3}) {
     ReachableSpace planner_test, centres;
     planner_test.fill(map, world.bounds(), from, clear, 0.0, 2.0, ReachableSpace::Clear::kPlannerTest);
     centres.fill(map, world.bounds(), from, clear);
     ASSERT_TRUE(planner_test.seeded()) << clear;
-    const std::vector<uint8_t> expected = referenceFill(map, start, clear, world.bounds().min, true);
-    const std::vector<uint8_t> by_centres = referenceFill(map, start, clear);
-    size_t count = 0, wrong = 0, centre_count = 0, centre_wrong = 0;
-    for (int x = 0; x < n.x(); ++x)
-      for (int y = 0; y < n.y(); ++y)
-        for (int z = 0; z < n.z(); ++z) {
-          const Eigen::Vector3i c(x, y, z);
-          const size_t i = static_cast<size_t>((x * n.y() + y) * n.z() + z);
-          count += expected[i];
-          wrong += planner_test.filled(c) != (expected[i] != 0) ? 1 : 0;
-          centre_count += by_centres[i];
-          centre_wrong += centres.filled(c) != (by_centres[i] != 0) ? 1 : 0;
-        }
+    size_t count = 0, centre_count = 0;
+    const size_t wrong = mismatches(planner_test, referenceFill(map, start, clear, world.bounds().min, true), &count);
+    const size_t centre_wrong = mismatches(centres, referenceFill(map, start, clear), &centre_count);
     EXPECT_EQ(wrong, 0u) << "clearance " << clear;
     EXPECT_EQ(planner_test.size(), count) << "clearance " << clear;
     EXPECT_GT(count, 100u) << clear;
