@@ -268,6 +268,7 @@ MissionResult MissionRunner::run() {
     event.viewpoints = frontier.viewpoints.size();
     event.clusters = frontier.clusters.size();
     event.tour = explorer.tour().size();
+    event.roadmap = explorer.stats().roadmap_vertices;
     event.action = toString(d.action);
     event.reason = toString(d.reason);
     const bool done = d.action == ExplorerAction::kDone;

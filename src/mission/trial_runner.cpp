@@ -176,6 +176,8 @@ TrialRow trialRow(int k, unsigned seed, const MissionResult& r, const EvalResult
   row.legs = r.explorer.legs;
   row.failures = r.explorer.leg_failures;
   row.blacklisted = r.blacklisted;
+  row.roadmap_growths = r.explorer.roadmap_growths;
+  row.roadmap_vertices = r.explorer.roadmap_vertices;
   row.final_inside = r.final_inside;
   row.frontier_ms_max = r.max_frontier_ms;
   row.plan_ms_max = r.max_plan_ms;
@@ -248,6 +250,7 @@ std::string reportJson(const ReportHeader& h, const std::vector<Stat>& stats) {
     json.value("full_recomputes", r.full).value("local_updates", r.local).value("legs", r.legs);
     json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
     json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
+    json.value("roadmap_growths", r.roadmap_growths).value("roadmap_vertices", r.roadmap_vertices);
     if (config.pose_error.enabled()) {  // the estimate and the fused poses against the truth (pose_error.h)
       for (const auto& [name, e] : {std::make_pair("pose_error", r.pose_error),
                                     std::make_pair("fused_pose_error", r.fused_pose_error)}) {
@@ -403,8 +406,9 @@ Status TrialRunner::run(const TrialOptions& options, TrialResult* result) const 
     runner.setProbePoints(probe);
     runner.setOracleGain(options.oracle_gain.value_or(0) > 0);
     runner.setProgress([this](const MissionEvent& e) {
-      out_ << printfString("  t %6.0f s  path %6.1f m  ISEs %6zu (C_ins %6zu)  clusters %4zu  tour %4zu  observed %5.1f %%\n",
-                     e.t, e.path_length, e.ises, e.inside, e.clusters, e.tour, 100.0 * e.observed)
+      out_ << printfString("  t %6.0f s  path %6.1f m  ISEs %6zu (C_ins %6zu)  clusters %4zu  tour %4zu  observed %5.1f %%"
+                           "  roadmap %6zu\n",
+                           e.t, e.path_length, e.ises, e.inside, e.clusters, e.tour, 100.0 * e.observed, e.roadmap)
            << std::flush;
     });
     std::vector<CoveragePoint> coverage_over_time;

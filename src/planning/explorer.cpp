@@ -271,6 +271,13 @@ bool Explorer::pathBlocked(const Eigen::Vector4d& uav) const {
   return false;
 }
 
+PathResult Explorer::planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds) {
+  PathResult r = planner_.plan(from, to, max_seconds);
+  stats_.roadmap_growths += r.roadmap_grew ? 1 : 0;
+  stats_.roadmap_vertices = planner_.roadmapVertices();
+  return r;
+}
+
 bool Explorer::nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const {
   const double h = 0.5 * map_->cellSize();
   const int n = static_cast<int>(std::ceil(within / h));
@@ -359,13 +366,13 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
         continue;
       }
     }
-    PathResult leg = planner_.plan(from, target, left());
+    PathResult leg = planLeg(from, target, left());
     // The frontier's clearance test and the planner's (radius plus half a
     // motion-check step) differ slightly: a target just inside the planner's
     // margin is moved to the nearest point that passes, within reach_tolerance.
     if (leg.status == PathStatus::kInvalidGoal && map_ != nullptr) {
       Eigen::Vector4d moved = target;
-      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planner_.plan(from, moved, left());
+      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planLeg(from, moved, left());
     }
     d->path_status = leg.status;
     if (hasPath(leg.status)) {

@@ -85,6 +85,7 @@ class Roadmap : public og::LazyPRMstar {
   ob::PlannerStatus query(const ob::PlannerTerminationCondition& ptc, const std::function<bool()>& timed_out,
                           int mode, std::vector<Eigen::Vector3d>* path) {
     checkValidity();
+    grew_ = false;
     const ob::State* start = pis_.nextStart();
     if (start == nullptr) return ob::PlannerStatus::INVALID_START;
     const ob::State* goal = pis_.nextGoal();
@@ -114,6 +115,7 @@ class Roadmap : public og::LazyPRMstar {
     }
     relabelComponents();
     resetStaleFlags();
+    grew_ = true;
     const ob::PlannerStatus status = solve(ptc);
     index_dirty_ = true;
     if (status == ob::PlannerStatus::EXACT_SOLUTION) return pathPoints(*pdef_->getSolutionPath(), path);
@@ -129,6 +131,8 @@ class Roadmap : public og::LazyPRMstar {
     for (auto [it, end] = boost::edges(g_); it != end; ++it) edgeValidityProperty_[*it] = VALIDITY_UNKNOWN;
   }
 
+  // The last query went to solve(), which sampled the roadmap larger.
+  bool grew() const { return grew_; }
   // Changes whenever vertices are added, removed or renumbered.
   uint64_t version() const { return version_; }
   const std::vector<Eigen::Vector3d>& positions() {
@@ -397,6 +401,7 @@ class Roadmap : public og::LazyPRMstar {
   std::vector<Vertex> byIndex_;
   std::vector<Eigen::Vector3d> pos_;
   bool index_dirty_ = false, components_dirty_ = false;
+  bool grew_ = false;
   uint64_t version_ = 0;
   unsigned int epoch_ = 1;  // of the map the validity flags are checked against
   bool ompl_flags_stale_ = false;

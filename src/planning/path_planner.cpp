@@ -349,6 +349,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   const ob::PlannerStatus status =
       impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw);
   impl_->prm->clearQuery();
+  result.roadmap_grew = impl_->prm->grew();
 
   PathStatus failure = PathStatus::kExactSolution;
   switch (ob::PlannerStatus::StatusType(status)) {

@@ -33,6 +33,7 @@ struct MissionEvent {
   double t = 0.0;              // flight time [s]
   double path_length = 0.0;    // flown so far [m]
   size_t ises = 0, inside = 0, remaining = 0, viewpoints = 0, clusters = 0, tour = 0;
+  size_t roadmap = 0;          // the leg planner's roadmap vertices
   double observed = -1.0;      // fraction of probe points observed; -1 when not measured
   std::string action, reason;  // the Explorer's decision
   Eigen::Vector4d uav = Eigen::Vector4d::Zero();  // the UAV's pose [x, y, z, yaw] at the update

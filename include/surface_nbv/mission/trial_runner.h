@@ -79,6 +79,7 @@ struct TrialRow {
   size_t yaw_corrections = 0;
   FlightProfile profile;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
+  size_t roadmap_growths = 0, roadmap_vertices = 0;  // the leg planner's (ExplorerStats)
 };
 
 struct TrialResult {

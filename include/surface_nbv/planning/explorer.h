@@ -172,6 +172,8 @@ struct ExplorerStats {
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
   size_t budget_stops = 0;      // decisions that spent leg_time_budget before finding a leg
   size_t lattice_legs = 0;      // legs the path planner's lattice fallback found (path_lattice_step)
+  size_t roadmap_growths = 0;   // leg plans whose roadmap held no path and was sampled larger
+  size_t roadmap_vertices = 0;  // the leg planner's roadmap after the last leg plan
   double tour_cost = 0.0;       // of the last full recomputation
   ExplorerTimings last;         // the last decision
 };
@@ -242,6 +244,8 @@ class Explorer {
   // The point nearest p (within `within`) clear of the radius plus a cell,
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
+  // planner_.plan(), its roadmap's growth counted in stats_.
+  PathResult planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds);
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // The wanted viewpoints of the last frontier, hashed by position, with
   // their unknown_fraction (pool_unknown_below) and their gain in the

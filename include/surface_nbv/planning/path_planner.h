@@ -104,6 +104,7 @@ struct PathResult {
   double seconds = 0.0;               // wall time of the call
   bool from_lattice = false;          // the lattice fallback found the path
   size_t lattice_nodes = 0;           // nodes the lattice fallback expanded (0: not run)
+  bool roadmap_grew = false;          // the roadmap held no path and was sampled larger
 };
 
 class PathPlanner {
