@@ -1,6 +1,7 @@
 #include "surface_nbv/map/collision_map.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -47,6 +48,8 @@ CollisionMap::CollisionMap(const TsdfMap& map, const CollisionConfig& config) : 
 CollisionMap::~CollisionMap() = default;
 
 void CollisionMap::rebuild(const TsdfMap& map) {
+  static std::atomic<uint64_t> builds{0};
+  build_id_ = ++builds;
   origin_ = map.config().bounds.min;
   bounds_max_ = map.config().bounds.max;
   grid_voxels_ = map.gridVoxels();

@@ -58,6 +58,47 @@ double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, c
   return entered > 0 ? static_cast<double>(unknown) / static_cast<double>(entered) : 1.0;
 }
 
+bool FrontierBuilder::cleanBlocks(const TsdfMap& map, const CollisionMap& collision, bool full,
+                                  std::vector<uint8_t>* dirty) const {
+  if (!reuse_poses_ || full || poses_.empty() || collision.buildId() != kept_build_) return false;
+  // A changed voxel u can change the search of the ISE v when
+  // |u - v|_inf <= reach: the candidates lie within maxDistance() of v, and
+  // distance() at a candidate reads cells within capCells() + 1 cells of
+  // it, each changed only within the cap of a changed cell. Block indices
+  // then differ by at most floor(reach / block) + 1 along each axis.
+  const VoxelStateGrid& grid = extractor_.states();
+  const double reach = generator_.maxDistance() + (collision.capCells() + 2) * collision.cellSize() + map.voxelSize();
+  const int k = static_cast<int>(std::floor(reach / (kBlockSize * map.voxelSize()))) + 1;
+  const Eigen::Vector3i& g = grid.gridBlocks();
+  dirty->assign(grid.numBlockSlots(), 0);
+  for (const Eigen::Vector3i& b : extractor_.changedStateBlocks()) (*dirty)[grid.blockSlot(b)] = 1;
+  if (extractor_.changedStateBlocks().empty()) return true;
+  // Dilate by k blocks along x, then y, then z (a cube of side 2k + 1).
+  std::vector<uint8_t> line;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int n = g[axis];
+    line.resize(static_cast<size_t>(n));
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    Eigen::Vector3i b;
+    for (b[a1] = 0; b[a1] < g[a1]; ++b[a1]) {
+      for (b[a2] = 0; b[a2] < g[a2]; ++b[a2]) {
+        int last = -1 - k;  // the last marked index along the line
+        for (b[axis] = 0; b[axis] < n; ++b[axis]) {
+          if ((*dirty)[grid.blockSlot(b)]) last = b[axis];
+          line[static_cast<size_t>(b[axis])] = b[axis] - last <= k ? 1 : 0;
+        }
+        last = n + k;
+        for (b[axis] = n - 1; b[axis] >= 0; --b[axis]) {
+          if ((*dirty)[grid.blockSlot(b)]) last = b[axis];
+          if (last - b[axis] <= k) line[static_cast<size_t>(b[axis])] = 1;
+        }
+        for (b[axis] = 0; b[axis] < n; ++b[axis]) (*dirty)[grid.blockSlot(b)] = line[static_cast<size_t>(b[axis])];
+      }
+    }
+  }
+  return true;
+}
+
 FrontierBuilder::FrontierBuilder(const SurfaceConfig& config)
     : config_(config),
       extractor_(config.threads),
@@ -93,15 +134,36 @@ Status FrontierBuilder::update(const TsdfMap& map, const CollisionMap& collision
   const AlignedBox& bounds = map.config().bounds;
   std::vector<Viewpoint> poses(voxels.size());
   std::vector<PoseSearch> searches(voxels.size());
+  std::vector<uint8_t> dirty, reused(voxels.size(), 0);
+  const bool keep = cleanBlocks(map, collision, ise_stats.full, &dirty);
   parallelForChunked(voxels.size(), config_.threads, 64, [&](size_t i) {
     Ise& ise = out.ises[i];
     ise.voxel = voxels[i];
     ise.id = grid.voxelId(voxels[i]);
     ise.position = grid.voxelCenter(voxels[i]);
-    ise.direction = generator_.direction(grid, voxels[i]);
-    searches[i] = generator_.generate(rays, collision, bounds, voxels[i], ise.direction, &poses[i], approach);
+    const auto kept = keep && !dirty[grid.blockSlot(TsdfMap::blockOfVoxel(voxels[i]))] ? poses_.find(ise.id)
+                                                                                        : poses_.end();
+    if (kept != poses_.end()) {
+      ise.direction = kept->second.direction;
+      searches[i] = kept->second.search;
+      poses[i] = kept->second.pose;
+      reused[i] = 1;
+    } else {
+      ise.direction = generator_.direction(grid, voxels[i]);
+      searches[i] = generator_.generate(rays, collision, bounds, voxels[i], ise.direction, &poses[i], approach);
+    }
     poses[i].sources.assign(1, static_cast<uint32_t>(i));
   });
+  if (reuse_poses_) {
+    std::unordered_map<uint64_t, KeptPose> next;
+    next.reserve(voxels.size());
+    for (size_t i = 0; i < voxels.size(); ++i) {
+      stats.poses_reused += reused[i];
+      next.emplace(out.ises[i].id, KeptPose{out.ises[i].direction, searches[i], poses[i]});
+    }
+    poses_ = std::move(next);
+    kept_build_ = collision.buildId();
+  }
   std::vector<Viewpoint> accepted;
   std::vector<uint32_t> accepted_ise;
   accepted.reserve(voxels.size());

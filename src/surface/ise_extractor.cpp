@@ -140,7 +140,13 @@ IseUpdateStats IseExtractor::update(const TsdfMap& map) {
 
 void IseExtractor::apply(const TsdfMap& map, const std::vector<size_t>& changed, IseUpdateStats* stats) {
   stats->blocks_changed = changed.size();
-  parallelForChunked(changed.size(), threads_, 8, [&](size_t i) { states_.refreshBlock(map, blockOfSlot(changed[i])); });
+  std::vector<uint8_t> state_changed(changed.size(), 0);
+  parallelForChunked(changed.size(), threads_, 8, [&](size_t i) {
+    state_changed[i] = states_.refreshBlock(map, blockOfSlot(changed[i])) ? 1 : 0;
+  });
+  changed_state_blocks_.clear();
+  for (size_t i = 0; i < changed.size(); ++i)
+    if (state_changed[i]) changed_state_blocks_.push_back(blockOfSlot(changed[i]));
   for (size_t slot : changed) present_[slot] = map.block(blockOfSlot(slot)) != nullptr ? 1 : 0;
 
   // The changed slots and their 26 neighbours, once each, by slot.

@@ -29,10 +29,11 @@ bool VoxelStateGrid::matches(const TsdfMap& map) const {
          w_th_ == map.config().w_th && origin_ == map.config().bounds.min;
 }
 
-void VoxelStateGrid::refreshBlock(const TsdfMap& map, const Eigen::Vector3i& block) {
+bool VoxelStateGrid::refreshBlock(const TsdfMap& map, const Eigen::Vector3i& block) {
   const TsdfBlock* b = map.block(block);
   const Eigen::Vector3i base = block * kBlockSize;
   const float w_th = w_th_;
+  uint8_t differ = 0;
   for (int z = 0; z < kBlockSize; ++z) {
     for (int y = 0; y < kBlockSize; ++y) {
       const Eigen::Vector3i first(base.x(), base.y() + y, base.z() + z);
@@ -48,10 +49,12 @@ void VoxelStateGrid::refreshBlock(const TsdfMap& map, const Eigen::Vector3i& blo
             s = v.w < w_th ? kUnknown : (v.phi <= 0.0f ? kOccupied : kFree);
           }
         }
+        differ |= row[x] ^ s;
         row[x] = s;
       }
     }
   }
+  return differ != 0;
 }
 
 }  // namespace surface_nbv

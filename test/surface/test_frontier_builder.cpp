@@ -32,6 +32,8 @@ void expectSameFrontier(const Frontier& a, const Frontier& b) {
     ASSERT_EQ(a.ises[i].remaining, b.ises[i].remaining);
     ASSERT_EQ(a.ises[i].viewpoint, b.ises[i].viewpoint);
     ASSERT_EQ(a.ises[i].direction, b.ises[i].direction);
+    ASSERT_EQ(a.ises[i].approach, b.ises[i].approach);
+    ASSERT_EQ(a.ises[i].unknown_blocked, b.ises[i].unknown_blocked);
   }
   EXPECT_EQ(a.remaining, b.remaining);
   EXPECT_EQ(a.scanned, b.scanned);
@@ -39,6 +41,7 @@ void expectSameFrontier(const Frontier& a, const Frontier& b) {
   for (size_t i = 0; i < a.viewpoints.size(); ++i) {
     ASSERT_EQ(a.viewpoints[i].position, b.viewpoints[i].position);
     ASSERT_EQ(a.viewpoints[i].yaw, b.viewpoints[i].yaw);
+    ASSERT_EQ(a.viewpoints[i].view_direction, b.viewpoints[i].view_direction);
     ASSERT_EQ(a.viewpoints[i].sources, b.viewpoints[i].sources);
     ASSERT_EQ(a.viewpoints[i].visible, b.viewpoints[i].visible);
     ASSERT_EQ(a.viewpoints[i].cluster, b.viewpoints[i].cluster);
@@ -49,6 +52,41 @@ void expectSameFrontier(const Frontier& a, const Frontier& b) {
     ASSERT_EQ(a.clusters[i].gain, b.clusters[i].gain);
   }
   EXPECT_EQ(a.stats.voxel_steps, b.stats.voxel_steps);
+  EXPECT_EQ(a.stats.poses_tested, b.stats.poses_tested);
+}
+
+// 60 x 12 x 6 m: ground and five 2 x 3 x 3 m buildings 12 m apart, scanned
+// for x < known_x voxels; beside the first building an unknown pocket
+// that is never scanned keeps ISEs far from where the scan goes on (and,
+// once the scan is past it, one beside the last building).
+TsdfMap rowOfBuildings(int known_x) {
+  TsdfMap map(gridConfig(Eigen::Vector3i(240, 48, 24)));
+  fillBox(&map, Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(known_x, 48, 24), VoxelState::kFree);
+  auto solid = [&](const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) {
+    if (lo.x() >= known_x) return;
+    fillBox(&map, lo, Eigen::Vector3i(std::min(hi.x(), known_x), hi.y(), hi.z()), VoxelState::kOccupied);
+  };
+  solid(Eigen::Vector3i(0, 0, 0), Eigen::Vector3i(240, 48, 1));
+  for (int x = 16; x < 240; x += 48) solid(Eigen::Vector3i(x, 18, 1), Eigen::Vector3i(x + 8, 30, 13));
+  fillBox(&map, Eigen::Vector3i(24, 20, 1), Eigen::Vector3i(28, 28, 6), VoxelState::kUnknown);  // the pocket
+  if (known_x > 216) {  // and one beside the last building
+    fillBox(&map, Eigen::Vector3i(216, 20, 1), Eigen::Vector3i(220, 28, 6), VoxelState::kUnknown);
+  }
+  return map;
+}
+
+// Copies the blocks of `from` that differ into `map`, stamped as changed.
+void copyChangedBlocks(const TsdfMap& from, TsdfMap* map) {
+  for (const auto& b : from.blocks()) {
+    TsdfBlock* dst = map->allocateBlock(b->index);
+    bool same = true;
+    for (int i = 0; i < kBlockVoxels && same; ++i) {
+      same = dst->voxels[i].w == b->voxels[i].w && dst->voxels[i].phi == b->voxels[i].phi;
+    }
+    if (same) continue;
+    dst->voxels = b->voxels;
+    dst->change_stamp = map->beginChange();
+  }
 }
 
 }  // namespace
@@ -172,16 +210,7 @@ TEST(FrontierBuilder, IncrementalUpdateEqualsAFreshBuild) {
   ASSERT_TRUE(builder.update(map, *collision, &incremental).ok());
   for (int known_x : {28, 36, 48}) {
     const TsdfMap more = halfScannedSite(known_x);
-    for (const auto& b : more.blocks()) {  // copy the newly scanned blocks, stamped
-      TsdfBlock* dst = map.allocateBlock(b->index);
-      bool same = true;
-      for (int i = 0; i < kBlockVoxels && same; ++i) {
-        same = dst->voxels[i].w == b->voxels[i].w && dst->voxels[i].phi == b->voxels[i].phi;
-      }
-      if (same) continue;
-      dst->voxels = b->voxels;
-      dst->change_stamp = map.beginChange();
-    }
+    copyChangedBlocks(more, &map);  // the newly scanned blocks, stamped
     collision->update(map);
     ASSERT_TRUE(builder.update(map, *collision, &incremental).ok());
     EXPECT_FALSE(incremental.stats.full_extraction);
@@ -191,6 +220,76 @@ TEST(FrontierBuilder, IncrementalUpdateEqualsAFreshBuild) {
     ASSERT_TRUE(FrontierBuilder(config).update(map, *collision, &fresh).ok());
     expectSameFrontier(incremental, fresh);
   }
+}
+
+// An ISE far from every changed voxel keeps its n_v and pose search: the
+// same frontier as a builder that searches every pose, through a scan that
+// moves along the row, an update with nothing changed and a rebuilt
+// collision map; stamped blocks whose states did not change are not changes.
+TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
+  TsdfMap map = rowOfBuildings(64);
+  auto collision = collisionFor(map);
+  SurfaceConfig config = testSurfaceConfig();
+  config.threads = 2;
+  FrontierBuilder kept(config), searched(config);
+  searched.setReusePoses(false);
+  Frontier a, b;
+  ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+  ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+  EXPECT_EQ(a.stats.poses_reused, 0u) << "nothing to keep on the first update";
+  size_t reused = 0, searched_again = 0;
+  for (int known_x : {112, 160, 208, 240}) {
+    copyChangedBlocks(rowOfBuildings(known_x), &map);
+    collision->update(map);
+    ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+    ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+    expectSameFrontier(a, b);
+    EXPECT_EQ(b.stats.poses_reused, 0u);
+    reused += a.stats.poses_reused;
+    searched_again += a.ises.size() - a.stats.poses_reused;
+  }
+  EXPECT_GT(reused, 0u) << "the pocket's ISEs are far from the scan";
+  EXPECT_GT(searched_again, 0u) << "those near it are searched again";
+
+  // Blocks stamped with the same states: every pose is kept.
+  for (const auto& block : map.blocks()) map.mutableBlock(block->index)->change_stamp = map.beginChange();
+  collision->update(map);
+  ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+  ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+  EXPECT_GT(a.stats.blocks_changed, 0u);
+  EXPECT_EQ(a.stats.poses_reused, a.ises.size());
+
+  // One voxel of the last pocket scanned: its ISEs are searched again, the first pocket's kept.
+  setState(&map, Eigen::Vector3i(219, 20, 3), VoxelState::kFree);
+  collision->update(map);
+  ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+  ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+  EXPECT_GT(a.stats.poses_reused, 0u);
+  EXPECT_LT(a.stats.poses_reused, a.ises.size());
+
+  // An obstacle where the first pocket's first viewpoint stands, blocks away
+  // from its ISEs: they search again and find other poses.
+  const auto pocket = std::find_if(a.viewpoints.begin(), a.viewpoints.end(),
+                                   [](const Viewpoint& q) { return q.position.x() < 15.0; });
+  ASSERT_NE(pocket, a.viewpoints.end());
+  const Eigen::Vector3d stood = pocket->position;
+  const Eigen::Vector3i at = (stood / kVoxel).array().floor().cast<int>();
+  fillBox(&map, at - Eigen::Vector3i::Ones(), at + Eigen::Vector3i::Constant(2), VoxelState::kOccupied);
+  collision->update(map);
+  ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+  ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+  for (const Viewpoint& q : a.viewpoints) EXPECT_GT((q.position - stood).norm(), 0.5);
+
+  // A rebuilt collision map: nothing is kept.
+  collision->rebuild(map);
+  ASSERT_TRUE(kept.update(map, *collision, &a).ok());
+  ASSERT_TRUE(searched.update(map, *collision, &b).ok());
+  expectSameFrontier(a, b);
+  EXPECT_EQ(a.stats.poses_reused, 0u);
 }
 
 TEST(FrontierBuilder, RefusesACollisionMapOfAnotherGrid) {

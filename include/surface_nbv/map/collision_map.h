@@ -103,6 +103,12 @@ class CollisionMap {
   // What the last update() (or rebuild) did: blocks read, cells re-evaluated,
   // cells whose obstacle state changed. A rebuild counts every cell as changed.
   size_t lastBlocksVisited() const { return blocks_visited_; }
+  // Unique in the process to each build of the transform from scratch (the
+  // constructor, rebuild(), an update() that had to), over all collision
+  // maps: an update changes distance() only within capCells() + 1 cells of
+  // a cell whose obstacle state changed, a rebuild anywhere.
+  uint64_t buildId() const { return build_id_; }
+  int capCells() const { return cap_cells_; }
   size_t lastCellsEvaluated() const { return cells_evaluated_; }
   size_t lastCellsChanged() const { return cells_changed_; }
   // Bytes held by the transform, the cell states and the query cache.
@@ -143,6 +149,7 @@ class CollisionMap {
   int factor_ = 1;
   double cell_size_ = 0.0;
   int cap_cells_ = 0;                // the transform's cap in cells
+  uint64_t build_id_ = 0;
   std::vector<uint8_t> obstacle_;    // per cell, what the transform holds
   std::vector<Nearest> nearest_;     // per cell, the transform's answer for queries
   std::unique_ptr<Edt> edt_;

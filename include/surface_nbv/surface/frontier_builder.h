@@ -3,9 +3,22 @@
 // ViewpointGenerator; ISEs without one form C_rem), merging
 // (ViewpointMerger), visibility C_q (VisibilityEvaluator) and clusters with
 // gains (ViewpointClusterer), timing each stage. Stages after the ISEs are
-// recomputed on every update. Single-threaded use; the stages run on
-// config.threads threads and give the same Frontier for any count.
+// recomputed on every update, except one ISE's n_v and pose search: those
+// read the voxel states within ViewpointGenerator::maxDistance() of it and
+// the collision distance at the candidates, which an update changes only
+// within the transform's cap (CollisionMap::capCells) of a cell whose
+// obstacle state changed. An ISE farther than both from every block whose
+// voxel states changed (IseExtractor::changedStateBlocks), on the same
+// collision map build (CollisionMap::buildId), keeps the last update's n_v and
+// search: the same answer as searching again (test_frontier_builder checks
+// it against a builder that searches every time). Single-threaded use; the
+// stages run on config.threads threads and give the same Frontier for any
+// count.
 #pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
 
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/map/tsdf_map.h"
@@ -38,8 +51,13 @@ class FrontierBuilder {
   // above config.collision_radius. Error (frontier untouched) when the
   // collision map's grid does not cover the map's.
   Status update(const TsdfMap& map, const CollisionMap& collision, Frontier* frontier);
-  // The next update re-extracts every ISE.
-  void reset() { extractor_ = IseExtractor(config_.threads); }
+  // The next update re-extracts every ISE and searches every pose.
+  void reset() {
+    extractor_ = IseExtractor(config_.threads);
+    poses_.clear();
+  }
+  // Off: every update searches every ISE's pose (the reference the kept ones are tested against).
+  void setReusePoses(bool on) { reuse_poses_ = on; }
 
   const IseExtractor& extractor() const { return extractor_; }
   const SurfaceConfig& config() const { return config_; }
@@ -51,6 +69,19 @@ class FrontierBuilder {
   ViewpointMerger merger_;
   VisibilityEvaluator visibility_;
   ViewpointClusterer clusterer_;
+
+  // An ISE's n_v and pose search as of the last update, by ISE id.
+  struct KeptPose {
+    Eigen::Vector3d direction;
+    PoseSearch search;
+    Viewpoint pose;
+  };
+  // Marks the block slots within reach of a changed state block (see above);
+  // false when nothing may be kept (another collision map, a rebuild, a full extraction).
+  bool cleanBlocks(const TsdfMap& map, const CollisionMap& collision, bool full, std::vector<uint8_t>* dirty) const;
+  bool reuse_poses_ = true;
+  std::unordered_map<uint64_t, KeptPose> poses_;
+  uint64_t kept_build_ = 0;  // CollisionMap::buildId() the kept poses were searched on
 };
 
 }  // namespace surface_nbv

@@ -48,6 +48,9 @@ class IseExtractor {
   std::vector<Eigen::Vector3i> ises() const;
   // Blocks whose ISEs changed in the last update, by slot.
   const std::vector<Eigen::Vector3i>& changedIseBlocks() const { return changed_ise_blocks_; }
+  // Blocks in which some voxel's state (states()) changed in the last update
+  // or rebuild, by slot: nothing else of states() changed.
+  const std::vector<Eigen::Vector3i>& changedStateBlocks() const { return changed_state_blocks_; }
   // The voxel states as of the last update, for eq. 2 and ray casting.
   const VoxelStateGrid& states() const { return states_; }
   int threads() const { return threads_; }
@@ -73,6 +76,7 @@ class IseExtractor {
   uint64_t last_stamp_ = 0;
   size_t total_ises_ = 0, total_scanned_ = 0;
   std::vector<Eigen::Vector3i> changed_ise_blocks_;
+  std::vector<Eigen::Vector3i> changed_state_blocks_;
 };
 
 }  // namespace surface_nbv

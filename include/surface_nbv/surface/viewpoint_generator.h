@@ -13,6 +13,7 @@
 // distance that puts v at the camera's min range. Const: thread-safe.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -60,6 +61,11 @@ class ViewpointGenerator {
   std::vector<Eigen::Vector3d> candidateDirections(const Eigen::Vector3d& n_v) const;
   // Candidate distances along a direction of elevation `elevation` [rad], in order.
   std::vector<double> candidateDistances(double elevation) const;
+  // The farthest a candidate pose lies from its ISE [m]: delta_pose, or the
+  // approach range when approach poses are on.
+  double maxDistance() const {
+    return approach_distances_.empty() ? distances_.front() : std::max(distances_.front(), approach_distances_.back());
+  }
   // Cosine of the angle between the optical axis of the camera at v + d dir,
   // yawed towards v, and the line back to v: the ISE's depth is d times it.
   double axisCos(const Eigen::Vector3d& dir) const;

@@ -29,8 +29,9 @@ class VoxelStateGrid {
   void reset(const TsdfMap& map);
   // True when reset() was called for a map with this geometry.
   bool matches(const TsdfMap& map) const;
-  // Copies the states of one block slot from `map` (unknown if unallocated).
-  void refreshBlock(const TsdfMap& map, const Eigen::Vector3i& block);
+  // Copies the states of one block slot from `map` (unknown if unallocated);
+  // true when a voxel's state differs from the one held before.
+  bool refreshBlock(const TsdfMap& map, const Eigen::Vector3i& block);
 
   // Voxel (i, j, k) with each coordinate in [-1, 8 * blocks]; see the contract above.
   size_t index(const Eigen::Vector3i& voxel) const {
