@@ -239,6 +239,11 @@ MissionResult MissionRunner::run() {
     }
     const double frontier_ms = msSince(t_frontier);
     result.times.frontier += frontier_ms;
+    result.times.frontier_ises += frontier.stats.ise_ms;
+    result.times.frontier_poses += frontier.stats.viewpoints_ms;
+    result.times.frontier_merge += frontier.stats.merge_ms;
+    result.times.frontier_visibility += frontier.stats.visibility_ms;
+    result.times.frontier_clusters += frontier.stats.clusters_ms;
     result.max_frontier_ms = std::max(result.max_frontier_ms, frontier_ms);
     ++result.frontier_updates;
     const ExplorerDecision d = supervisor.decide(&explorer, frontier, in);

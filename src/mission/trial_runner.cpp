@@ -263,6 +263,9 @@ std::string reportJson(const ReportHeader& h, const std::vector<Stat>& stats) {
     json.beginObject("stage_ms").value("render", r.times.render).value("integrate", r.times.integrate);
     json.value("collision", r.times.collision).value("frontier", r.times.frontier).value("graph", r.times.graph);
     json.value("tour", r.times.tour).value("path", r.times.path).value("tracker", r.times.tracker).endObject();
+    json.beginObject("frontier_stage_ms").value("ises", r.times.frontier_ises).value("poses", r.times.frontier_poses);
+    json.value("merge", r.times.frontier_merge).value("visibility", r.times.frontier_visibility);
+    json.value("clusters", r.times.frontier_clusters).endObject();
     const FlightProfile& p = r.profile;
     json.beginObject("flight_profile").value("cruise_s", p.cruise_s).value("moving_s", p.moving_s);
     json.value("turning_in_place_s", p.turning_in_place_s).value("stopped_s", p.stopped_s);

@@ -110,14 +110,17 @@ void VisibilityEvaluator::visibleFrom(const VoxelRayCaster& rays, const BlockInd
 }
 
 uint64_t VisibilityEvaluator::evaluate(const VoxelRayCaster& rays, const std::vector<Ise>& ises,
-                                       std::vector<Viewpoint>* viewpoints) const {
+                                       std::vector<Viewpoint>* viewpoints, const std::vector<uint8_t>* todo,
+                                       std::vector<uint64_t>* steps_out) const {
   const BlockIndex block_index = index(rays.grid(), ises);
   std::vector<uint64_t> steps(viewpoints->size(), 0);
   parallelForChunked(viewpoints->size(), config_.threads, 8, [&](size_t i) {
+    if (todo != nullptr && !(*todo)[i]) return;
     visibleFrom(rays, block_index, ises, (*viewpoints)[i], &(*viewpoints)[i].visible, &steps[i]);
   });
   uint64_t total = 0;
   for (uint64_t s : steps) total += s;
+  if (steps_out != nullptr) *steps_out = std::move(steps);
   return total;
 }
 

@@ -42,6 +42,7 @@ void expectSameFrontier(const Frontier& a, const Frontier& b) {
     ASSERT_EQ(a.viewpoints[i].position, b.viewpoints[i].position);
     ASSERT_EQ(a.viewpoints[i].yaw, b.viewpoints[i].yaw);
     ASSERT_EQ(a.viewpoints[i].view_direction, b.viewpoints[i].view_direction);
+    ASSERT_EQ(a.viewpoints[i].unknown_fraction, b.viewpoints[i].unknown_fraction);
     ASSERT_EQ(a.viewpoints[i].sources, b.viewpoints[i].sources);
     ASSERT_EQ(a.viewpoints[i].visible, b.viewpoints[i].visible);
     ASSERT_EQ(a.viewpoints[i].cluster, b.viewpoints[i].cluster);
@@ -222,8 +223,9 @@ TEST(FrontierBuilder, IncrementalUpdateEqualsAFreshBuild) {
   }
 }
 
-// An ISE far from every changed voxel keeps its n_v and pose search: the
-// same frontier as a builder that searches every pose, through a scan that
+// An ISE far from every changed voxel keeps its n_v and pose search, and a
+// viewpoint far from them its C_q: the same frontier as a builder that
+// searches every pose and evaluates every viewpoint, through a scan that
 // moves along the row, an update with nothing changed and a rebuilt
 // collision map; stamped blocks whose states did not change are not changes.
 TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
@@ -238,7 +240,7 @@ TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
   ASSERT_TRUE(searched.update(map, *collision, &b).ok());
   expectSameFrontier(a, b);
   EXPECT_EQ(a.stats.poses_reused, 0u) << "nothing to keep on the first update";
-  size_t reused = 0, searched_again = 0;
+  size_t reused = 0, searched_again = 0, views_kept = 0;
   for (int known_x : {112, 160, 208, 240}) {
     copyChangedBlocks(rowOfBuildings(known_x), &map);
     collision->update(map);
@@ -247,10 +249,13 @@ TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
     expectSameFrontier(a, b);
     EXPECT_EQ(b.stats.poses_reused, 0u);
     reused += a.stats.poses_reused;
+    views_kept += a.stats.views_reused;
+    EXPECT_EQ(b.stats.views_reused, 0u);
     searched_again += a.ises.size() - a.stats.poses_reused;
   }
   EXPECT_GT(reused, 0u) << "the pocket's ISEs are far from the scan";
   EXPECT_GT(searched_again, 0u) << "those near it are searched again";
+  EXPECT_GT(views_kept, 0u);
 
   // Blocks stamped with the same states: every pose is kept.
   for (const auto& block : map.blocks()) map.mutableBlock(block->index)->change_stamp = map.beginChange();
@@ -260,6 +265,7 @@ TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
   expectSameFrontier(a, b);
   EXPECT_GT(a.stats.blocks_changed, 0u);
   EXPECT_EQ(a.stats.poses_reused, a.ises.size());
+  EXPECT_EQ(a.stats.views_reused, a.viewpoints.size());
 
   // One voxel of the last pocket scanned: its ISEs are searched again, the first pocket's kept.
   setState(&map, Eigen::Vector3i(219, 20, 3), VoxelState::kFree);
@@ -269,6 +275,8 @@ TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
   expectSameFrontier(a, b);
   EXPECT_GT(a.stats.poses_reused, 0u);
   EXPECT_LT(a.stats.poses_reused, a.ises.size());
+  EXPECT_GT(a.stats.views_reused, 0u);
+  EXPECT_LT(a.stats.views_reused, a.viewpoints.size());
 
   // An obstacle where the first pocket's first viewpoint stands, blocks away
   // from its ISEs: they search again and find other poses.
@@ -290,6 +298,7 @@ TEST(FrontierBuilder, KeptPoseSearchesGiveTheFrontierOfSearchingAgain) {
   ASSERT_TRUE(searched.update(map, *collision, &b).ok());
   expectSameFrontier(a, b);
   EXPECT_EQ(a.stats.poses_reused, 0u);
+  EXPECT_EQ(a.stats.views_reused, 0u);
 }
 
 TEST(FrontierBuilder, RefusesACollisionMapOfAnotherGrid) {

@@ -45,6 +45,8 @@ struct MissionEvent {
 
 struct MissionStageTimes {  // wall-clock milliseconds, summed over the mission
   double render = 0, integrate = 0, collision = 0, frontier = 0, graph = 0, tour = 0, path = 0, tracker = 0;
+  // The frontier's own stages (FrontierStats), summed: they make up `frontier`.
+  double frontier_ises = 0, frontier_poses = 0, frontier_merge = 0, frontier_visibility = 0, frontier_clusters = 0;
   double total() const { return render + integrate + collision + frontier + graph + tour + path + tracker; }
 };
 

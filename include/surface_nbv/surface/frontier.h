@@ -66,6 +66,7 @@ struct FrontierStats {
   size_t unmerged_viewpoints = 0; // one per ISE outside C_rem
   size_t approach_poses = 0;      // ISEs whose pose is an approach pose
   size_t poses_reused = 0;        // ISEs whose n_v and pose search were kept from the last update
+  size_t views_reused = 0;        // viewpoints whose C_q and unknown_fraction were kept from the last update
   uint64_t voxel_steps = 0;       // DDA steps of the visibility stage
   size_t links = 0;               // cluster-graph edges
 

@@ -10,10 +10,13 @@
 // obstacle state changed. An ISE farther than both from every block whose
 // voxel states changed (IseExtractor::changedStateBlocks), on the same
 // collision map build (CollisionMap::buildId), keeps the last update's n_v and
-// search: the same answer as searching again (test_frontier_builder checks
-// it against a builder that searches every time). Single-threaded use; the
-// stages run on config.threads threads and give the same Frontier for any
-// count.
+// search. Likewise a merged viewpoint at the same position and yaw as one of
+// the last update, farther than max_range and two voxels from every such
+// block, keeps its C_q (as ISE ids), its DDA steps and unknown_fraction:
+// what it sees and the ISEs it could see are the same. Both give the answer
+// of searching again (test_frontier_builder checks them against a builder
+// that searches every time). Single-threaded use; the stages run on
+// config.threads threads and give the same Frontier for any count.
 #pragma once
 
 #include <cstdint>
@@ -55,8 +58,10 @@ class FrontierBuilder {
   void reset() {
     extractor_ = IseExtractor(config_.threads);
     poses_.clear();
+    views_.clear();
   }
-  // Off: every update searches every ISE's pose (the reference the kept ones are tested against).
+  // Off: every update searches every ISE's pose and evaluates every
+  // viewpoint (the reference the kept ones are tested against).
   void setReusePoses(bool on) { reuse_poses_ = on; }
 
   const IseExtractor& extractor() const { return extractor_; }
@@ -76,11 +81,33 @@ class FrontierBuilder {
     PoseSearch search;
     Viewpoint pose;
   };
-  // Marks the block slots within reach of a changed state block (see above);
-  // false when nothing may be kept (another collision map, a rebuild, a full extraction).
-  bool cleanBlocks(const TsdfMap& map, const CollisionMap& collision, bool full, std::vector<uint8_t>* dirty) const;
+  // A merged viewpoint's C_q (by ISE id), its DDA steps and unknown_fraction, by position and yaw.
+  struct KeptView {
+    std::vector<uint64_t> visible;
+    uint64_t steps = 0;
+    double unknown_fraction = 1.0;
+  };
+  struct ViewKey {
+    uint64_t bits[4];
+    bool operator==(const ViewKey& o) const;
+  };
+  struct ViewKeyHash {
+    size_t operator()(const ViewKey& k) const;
+  };
+  static ViewKey keyOf(const Viewpoint& q);
+  // Per block slot: within `reach` metres (max norm) of a voxel whose state
+  // changed in the last extraction, as far as blocks tell (a superset).
+  std::vector<uint8_t> nearChanges(double reach, double voxel_size) const;
+  // n_v and pose searches into out->ises and `poses` (kept or searched).
+  void searchPoses(const TsdfMap& map, const CollisionMap& collision, bool keep, const VoxelRayCaster& rays,
+                   const VoxelRayCaster* approach, std::vector<Viewpoint>* poses, std::vector<PoseSearch>* searches,
+                   Frontier* out);
+  // C_q and unknown_fraction of every viewpoint of *out (kept or evaluated).
+  void evaluateViews(bool keep, double voxel_size, const VoxelRayCaster& rays, const VoxelRayCaster& loose,
+                     Frontier* out);
   bool reuse_poses_ = true;
   std::unordered_map<uint64_t, KeptPose> poses_;
+  std::unordered_map<ViewKey, KeptView, ViewKeyHash> views_;
   uint64_t kept_build_ = 0;  // CollisionMap::buildId() the kept poses were searched on
 };
 

@@ -23,8 +23,11 @@ class VisibilityEvaluator {
   explicit VisibilityEvaluator(const SurfaceConfig& config);
 
   // Fills viewpoints[i].visible with ascending indices into `ises`; returns
-  // the voxel steps walked by all rays.
-  uint64_t evaluate(const VoxelRayCaster& rays, const std::vector<Ise>& ises, std::vector<Viewpoint>* viewpoints) const;
+  // the voxel steps walked by all rays. With `todo`, only the viewpoints i
+  // with (*todo)[i] set; with `steps`, steps[i] gets viewpoint i's (0 for
+  // those not evaluated).
+  uint64_t evaluate(const VoxelRayCaster& rays, const std::vector<Ise>& ises, std::vector<Viewpoint>* viewpoints,
+                    const std::vector<uint8_t>* todo = nullptr, std::vector<uint64_t>* steps = nullptr) const;
 
   // Whether the camera at `viewpoint` has p_W inside its frustum.
   bool inFrustum(const Viewpoint& viewpoint, const Eigen::Vector3d& p_W) const;
