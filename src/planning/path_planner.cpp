@@ -346,17 +346,8 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
                    : config_.search == QuerySearch::kFast                                        ? Roadmap::kFastSearch
                                                                                                   : Roadmap::kOmplSearch;
   std::vector<Eigen::Vector3d> raw;
-  // A graph without a path grows the whole roadmap by up to
-  // iteration_budget samples; a goal in straight view of the start needs
-  // none (inside a low deck, where few samples land between floor and
-  // ceiling, such queries grew it by thousands of vertices each: docs/scaling.md).
-  const auto straight = [this, &start, &goal](std::vector<Eigen::Vector3d>* path) {
-    if (!impl_->motionFree(start.head<3>(), goal.head<3>())) return false;
-    *path = {start.head<3>(), goal.head<3>()};
-    return true;
-  };
   const ob::PlannerStatus status =
-      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, straight);
+      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw);
   impl_->prm->clearQuery();
   result.roadmap_grew = impl_->prm->grew();
 

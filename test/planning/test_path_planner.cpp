@@ -394,27 +394,6 @@ TEST(PathPlanner, IterationBudgetBoundsTheRoadmapGrowth) {
   EXPECT_EQ(grown[0], grown[1]);
 }
 
-// A goal in straight view of the start is answered without growing the
-// roadmap when the graph has no path; one behind the wall grows it.
-TEST(PathPlanner, AGoalInStraightViewNeedsNoGrowth) {
-  const WallWorld world(true);
-  PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
-  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()));
-  const Eigen::Vector4d near(-4.0, 3.0, 2.5, 0.5);  // same side of the wall as kStart
-  const PathResult straight = planner.plan(kStart, near);
-  ASSERT_EQ(straight.status, PathStatus::kExactSolution);
-  EXPECT_FALSE(straight.roadmap_grew);
-  EXPECT_EQ(planner.roadmapVertices(), 2u) << "only the query's start and goal";
-  ASSERT_EQ(straight.path.size(), 2u);
-  EXPECT_NEAR(straight.length, (near - kStart).head<3>().norm(), 1e-12);
-  EXPECT_NEAR(straight.path.back()[3], 0.5, 1e-12);
-  const PathResult around = planner.plan(kStart, kGoal);  // through the gap
-  ASSERT_EQ(around.status, PathStatus::kExactSolution);
-  EXPECT_TRUE(around.roadmap_grew);
-  EXPECT_GT(planner.roadmapVertices(), 4u);
-  expectCollisionFree(world.collision(), around, 1.0);
-}
-
 TEST(PathPlannerOracle, StraightWhenFreeLongerAroundTheWall) {
   const WallWorld world(true);
   PathPlanner planner(seededPlannerConfig(kSeed, kIterations, kTimeBudget));
