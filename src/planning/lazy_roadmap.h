@@ -79,11 +79,14 @@ class Roadmap : public og::LazyPRMstar {
 
   // The problem definition's start and goal join the roadmap as milestones
   // (as solve() adds them). kFastSearch: our lazy A* over the graph, and
-  // kOmplSearch: OMPL's constructSolution. A graph without a path, or
-  // kGrowOnly, goes to solve(ptc), which samples until the path exists and
-  // is valid. The raw roadmap path (start to goal) is written to `path`.
+  // kOmplSearch: OMPL's constructSolution. A graph without a path first
+  // asks `before_growing` (when given), which may answer with a path of its
+  // own (true, `path` written); else, and with kGrowOnly, solve(ptc) samples
+  // until the path exists and is valid. The raw roadmap path (start to
+  // goal) is written to `path`.
   ob::PlannerStatus query(const ob::PlannerTerminationCondition& ptc, const std::function<bool()>& timed_out,
-                          int mode, std::vector<Eigen::Vector3d>* path) {
+                          int mode, std::vector<Eigen::Vector3d>* path,
+                          const std::function<bool(std::vector<Eigen::Vector3d>*)>& before_growing = {}) {
     checkValidity();
     grew_ = false;
     const ob::State* start = pis_.nextStart();
@@ -113,6 +116,7 @@ class Roadmap : public og::LazyPRMstar {
       index_dirty_ = true;
       if (solution) return pathPoints(*solution, path);
     }
+    if (mode != kGrowOnly && before_growing && before_growing(path)) return ob::PlannerStatus::EXACT_SOLUTION;
     relabelComponents();
     resetStaleFlags();
     grew_ = true;

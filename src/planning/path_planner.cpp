@@ -319,12 +319,11 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   if (config_.time_budget <= 0.0 || cap <= 0.0) return finish(PathStatus::kTimeout);
   const double budget_s = std::min(config_.time_budget, cap);
   // With the lattice on, a caller's cap (the ROS planner's leg_time_budget)
-  // is shared: the roadmap stops at half of it, so that the lattice, which
-  // finds the tight passages sampling misses, still has time when the
-  // roadmap has none to spare (it would otherwise spend the whole cap, as
-  // it does on a loaded machine). Without a cap nothing changes.
-  const double roadmap_s =
-      config_.lattice_step > 0.0 && std::isfinite(cap) ? std::min(budget_s, 0.5 * cap) : budget_s;
+  // is shared: the lattice, asked before the roadmap grows, stops at half of
+  // it, so that the growth, which finds long ways round, still has time
+  // when the lattice has none to spare. Without a cap nothing changes.
+  const double roadmap_s = budget_s;
+  const double lattice_cap = config_.lattice_step > 0.0 && std::isfinite(cap) ? 0.5 * cap : cap;
 
   auto pdef = std::make_shared<ob::ProblemDefinition>(impl_->si);
   pdef->setStartAndGoalStates(s, g);
@@ -345,9 +344,34 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   const int mode = !config_.stop_at_first_solution || config_.search == QuerySearch::kOmplSolve ? Roadmap::kGrowOnly
                    : config_.search == QuerySearch::kFast                                        ? Roadmap::kFastSearch
                                                                                                   : Roadmap::kOmplSearch;
+  // With the lattice on, a graph without a path asks the lattice before the
+  // roadmap grows. Growing samples the whole bounds by up to
+  // iteration_budget milestones, and where the free space is a thin slab
+  // (a deck's 3 m under a ceiling, less the clearance twice) few samples
+  // land in it and the k nearest of those that do lie across the floors:
+  // the growth fails and the roadmap keeps thousands of vertices for each
+  // such query (docs/scaling.md). The lattice has its own node budget (and
+  // the wall-time budget again as a safety net).
+  bool lattice_tried = false;
+  double lattice_until = lattice_cap;  // before the growth; after it (kGrowOnly), the whole cap
+  const auto lattice = [&](std::vector<Eigen::Vector3d>* path) {
+    if (!(config_.lattice_step > 0.0)) return false;
+    lattice_tried = true;
+    const double deadline = std::min(elapsed() + budget_s, lattice_until);
+    if (elapsed() >= deadline) return false;
+    const LatticeSearchResult found = latticeSearch(
+        start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
+        [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
+        [&elapsed, deadline] { return elapsed() > deadline; });
+    result.lattice_nodes = found.expanded;
+    if (!found.found) return false;
+    *path = found.path;
+    result.from_lattice = true;
+    return true;
+  };
   std::vector<Eigen::Vector3d> raw;
   const ob::PlannerStatus status =
-      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw);
+      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, lattice);
   impl_->prm->clearQuery();
   result.roadmap_grew = impl_->prm->grew();
 
@@ -363,21 +387,9 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       break;
     default: failure = PathStatus::kNoSolution;
   }
-  if (failure != PathStatus::kExactSolution) {
-    // The roadmap found nothing: the lattice search, when enabled, has its own
-    // node budget (and the same wall-time budget again as a safety net).
-    if (!(config_.lattice_step > 0.0)) return finish(failure);
-    const double lattice_deadline = std::min(elapsed() + budget_s, cap);
-    if (elapsed() >= lattice_deadline) return finish(PathStatus::kTimeout);
-    const LatticeSearchResult lattice = latticeSearch(
-        start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
-        [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
-        [&elapsed, lattice_deadline] { return elapsed() > lattice_deadline; });
-    result.lattice_nodes = lattice.expanded;
-    if (!lattice.found) return finish(failure);
-    raw = lattice.path;
-    result.from_lattice = true;
-  }
+  // The modes that only grow (kGrowOnly) ask the lattice after the growth.
+  lattice_until = cap;
+  if (failure != PathStatus::kExactSolution && (lattice_tried || !lattice(&raw))) return finish(failure);
 
   // Greedy shortcutting: from each kept point jump to the farthest later
   // point reachable by a collision-free straight motion.

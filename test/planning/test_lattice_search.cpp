@@ -82,7 +82,8 @@ TEST(LatticeSearch, RefusesBadInput) {
 
 // The wall of WallWorld closed except for a slot 2.5 m wide: with the 1 m
 // collision radius only a band about 0.4 m wide in its middle is valid,
-// which a roadmap of a few samples does not hit and the lattice does.
+// which a roadmap of a few samples does not hit and the lattice does,
+// asked before the roadmap grows.
 TEST(LatticeSearch, PlannerFallsBackToTheLatticeThroughANarrowSlot) {
   WallWorld world(true);
   world.addBox(Vector3d(-0.25, 0.9, -1.0), Vector3d(0.25, 2.1, 6.0));
@@ -104,6 +105,8 @@ TEST(LatticeSearch, PlannerFallsBackToTheLatticeThroughANarrowSlot) {
     ASSERT_EQ(r.status, PathStatus::kExactSolution) << toString(r.status);
     EXPECT_TRUE(r.from_lattice);
     EXPECT_GT(r.lattice_nodes, 0u);
+    EXPECT_FALSE(r.roadmap_grew) << "the lattice is asked before the roadmap grows";
+    EXPECT_EQ(planner.roadmapVertices(), 2u) << "only the query's start and goal";
     ASSERT_GE(r.path.size(), 2u);
     EXPECT_EQ(r.path.front().head<3>(), start.head<3>());
     EXPECT_EQ(r.path.back().head<3>(), goal.head<3>());
@@ -129,12 +132,13 @@ TEST(LatticeSearch, PlannerFallsBackToTheLatticeThroughANarrowSlot) {
   EXPECT_EQ(none.status, PathStatus::kNoSolution);
   EXPECT_FALSE(none.from_lattice);
   EXPECT_GT(none.lattice_nodes, 0u);
+  EXPECT_TRUE(none.roadmap_grew) << "then the roadmap grows";
 }
 
-// A caller's cap (the ROS planner's leg_time_budget) on a roadmap bounded by
-// wall time only: the roadmap used to spend all of it, and the lattice never
-// ran. Now it stops at half the cap and the lattice searches in the rest.
-TEST(LatticeSearch, RoadmapLeavesTheLatticeHalfOfACallersCap) {
+// A caller's cap (the ROS planner's leg_time_budget) with a lattice bounded
+// by wall time only: the lattice, asked before the roadmap grows, stops at
+// half the cap and the growth searches in the rest.
+TEST(LatticeSearch, LatticeLeavesTheRoadmapHalfOfACallersCap) {
   WallWorld world(false);  // no gap: neither search can reach the goal, both run to their limits
   const Eigen::Vector4d start(-3.5, -3.0, 2.5, 0.0), goal(3.5, -2.8, 2.4, 1.0);
   PathPlannerConfig config = seededPlannerConfig(3, 0, 30.0);  // no iteration bound
@@ -146,7 +150,9 @@ TEST(LatticeSearch, RoadmapLeavesTheLatticeHalfOfACallersCap) {
   const PathResult r = planner.plan(start, goal, cap);
   EXPECT_EQ(r.status, PathStatus::kTimeout) << toString(r.status);
   EXPECT_FALSE(r.from_lattice);
-  EXPECT_GT(r.lattice_nodes, 0u) << "the roadmap spent the whole cap";
+  EXPECT_GT(r.lattice_nodes, 0u);
+  EXPECT_TRUE(r.roadmap_grew) << "the lattice spent the whole cap";
+  EXPECT_GT(r.seconds, 0.9 * cap);
   EXPECT_LT(r.seconds, cap + 0.5);
 
   config.lattice_step = 0.0;  // without the lattice the roadmap keeps the whole cap

@@ -70,10 +70,11 @@ struct PathPlannerConfig {
   bool stop_at_first_solution = true; // false: LazyPRM* improves the path until the budget ends
   bool simplify = true;               // greedy collision-checked shortcutting of the path
   QuerySearch search = QuerySearch::kFast;  // how plan() searches the kept roadmap
-  // When the roadmap yields no path (kNoSolution or kTimeout), an A* over a
-  // lattice of this step [m] anchored at the start, checked with the same
-  // motion validity (lattice_search.h), tries before plan() gives up: tight
-  // spots and narrow passages that sampling misses. 0 = off.
+  // When the roadmap's graph holds no path, an A* over a lattice of this
+  // step [m] anchored at the start, checked with the same motion validity
+  // (lattice_search.h), tries before the roadmap grows (with kOmplSolve,
+  // after it): tight spots, narrow passages and thin free slabs that
+  // sampling misses, without growing the roadmap for them. 0 = off.
   double lattice_step = 0.0;
   size_t lattice_max_nodes = 200000;  // lattice nodes expanded at most per plan()
 
