@@ -144,7 +144,9 @@ TEST(ConfigParity, EveryShippedConfigReadsTheSameThroughBothLoaders) {
     EXPECT_DOUBLE_EQ(p.yaw_rate, yaml.yaw_rate);
     EXPECT_DOUBLE_EQ(p.leg_lookahead, yaml.leg_lookahead);
     EXPECT_DOUBLE_EQ(p.leg_yaw_tolerance, yaml.leg_yaw_tolerance);
-    if (mission) EXPECT_DOUBLE_EQ(p.max_flight_time, yaml.max_flight_time);
+    if (mission) {
+      EXPECT_DOUBLE_EQ(p.max_flight_time, yaml.max_flight_time);
+    }
     EXPECT_DOUBLE_EQ(p.start_spin, yaml.start_spin);
     // The mission's rules: the same flight keys and reach, the drivers'
     // own ways of seeing a leg end and a frontier come (mission_supervisor.h).
@@ -152,7 +154,9 @@ TEST(ConfigParity, EveryShippedConfigReadsTheSameThroughBothLoaders) {
     EXPECT_DOUBLE_EQ(node_rules.flight.speed, mission_rules.flight.speed);
     EXPECT_DOUBLE_EQ(node_rules.flight.leg_lookahead, mission_rules.flight.leg_lookahead);
     EXPECT_DOUBLE_EQ(node_rules.flight.start_spin, mission_rules.flight.start_spin);
-    if (mission) EXPECT_DOUBLE_EQ(node_rules.flight.max_flight_time, mission_rules.flight.max_flight_time);
+    if (mission) {
+      EXPECT_DOUBLE_EQ(node_rules.flight.max_flight_time, mission_rules.flight.max_flight_time);
+    }
     EXPECT_DOUBLE_EQ(node_rules.reach_tolerance, mission_rules.reach_tolerance);
     EXPECT_DOUBLE_EQ(node_rules.frontier_period, 0.0);
     EXPECT_DOUBLE_EQ(mission_rules.frontier_period, yaml.frontier_period);
@@ -163,12 +167,16 @@ TEST(ConfigParity, EveryShippedConfigReadsTheSameThroughBothLoaders) {
     EXPECT_DOUBLE_EQ(ros.mapper_config.tsdf.mesh_voxel_size, yaml.tsdf.mesh_voxel_size);
     EXPECT_EQ(ros.mapper_config.tsdf.mesh_weight_dropoff, yaml.tsdf.mesh_weight_dropoff);
     EXPECT_DOUBLE_EQ(ros.mapper_config.camera.min_range, yaml.camera.min_range);
-    if (mission) EXPECT_DOUBLE_EQ(ros.mapper_config.start_free_radius, yaml.start_free_radius);
+    if (mission) {
+      EXPECT_DOUBLE_EQ(ros.mapper_config.start_free_radius, yaml.start_free_radius);
+    }
     const SurfaceConfig& s = ros.extractor_config.surface;
     EXPECT_DOUBLE_EQ(s.delta_pose, yaml.surface.delta_pose);
     EXPECT_DOUBLE_EQ(s.d_nu, yaml.surface.d_nu);
     EXPECT_DOUBLE_EQ(s.approach_range_fraction, yaml.surface.approach_range_fraction);
-    if (mission) EXPECT_DOUBLE_EQ(ros.extractor_config.frontier_period, yaml.frontier_period);
+    if (mission) {
+      EXPECT_DOUBLE_EQ(ros.extractor_config.frontier_period, yaml.frontier_period);
+    }
     EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.v_max, yaml.tracker.model.v_max);
     EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.yaw_rate_max, yaml.tracker.model.yaw_rate_max);
     EXPECT_DOUBLE_EQ(ros.tracker_config.sim.model.a_max, yaml.tracker.model.a_max);
