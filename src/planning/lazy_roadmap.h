@@ -126,6 +126,29 @@ class Roadmap : public og::LazyPRMstar {
     return status;
   }
 
+  // Joins a path checked free (its points and the straight motions between
+  // consecutive ones) to the roadmap: each point a milestone (with its k
+  // nearest, lazily), consecutive ones joined by an edge known valid in this
+  // epoch. Later queries find the way the path found (the lattice's,
+  // through a slab few samples reach) in the graph.
+  void addFreePath(const std::vector<Eigen::Vector3d>& points) {
+    Vertex previous = 0;
+    for (size_t k = 0; k < points.size(); ++k) {
+      ob::State* state = si_->allocState();
+      auto* values = state->as<ob::RealVectorStateSpace::StateType>()->values;
+      for (int i = 0; i < 3; ++i) values[i] = points[k][i];
+      const Vertex m = addIndexed(state);
+      vertexValidityProperty_[m] = (epoch_ << kEpochShift) | VALIDITY_TRUE;
+      if (k > 0) {
+        auto [edge, added] = boost::add_edge(previous, m, g_);
+        if (added) weightProperty_[edge] = ob::Cost((points[k] - points[k - 1]).norm());
+        edgeValidityProperty_[edge] = (epoch_ << kEpochShift) | VALIDITY_TRUE;
+        uniteComponents(previous, m);
+      }
+      previous = m;
+    }
+  }
+
   // The map changed: every validity flag checked so far is out of date.
   void mapChanged() {
     ompl_flags_stale_ = true;

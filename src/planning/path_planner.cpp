@@ -409,6 +409,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   for (size_t k : kept)
     if (points.empty() || raw[k] != points.back()) points.push_back(raw[k]);
   if (points.size() == 1) points.push_back(raw.back());
+  if (result.from_lattice) impl_->prm->addFreePath(points);
   std::vector<double> arc(points.size(), 0.0);
   for (size_t k = 1; k < points.size(); ++k) arc[k] = arc[k - 1] + (points[k] - points[k - 1]).norm();
   result.length = arc.back();
