@@ -258,15 +258,18 @@ Status PathPlanner::setMap(const CollisionMap* map, const AlignedBox& bounds) {
   impl_->map = map;
   impl_->bounds = bounds;
   impl_->resolution = resolution;
+  ++map_changes_;
   impl_->build(config_);
   return Status::Ok();
 }
 
 void PathPlanner::mapChanged() {
+  ++map_changes_;
   if (impl_->prm) impl_->prm->mapChanged();
 }
 
 void PathPlanner::clear() {
+  ++map_changes_;  // a new roadmap: no start is stuck on it
   if (impl_->map) impl_->build(config_);
 }
 
@@ -364,7 +367,14 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
         [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
         [&elapsed, deadline] { return elapsed() > deadline; });
     result.lattice_nodes = found.expanded;
-    if (!found.found) return false;
+    if (!found.found) {
+      // No growth from a start where one failed after the lattice, until the map changes.
+      if (stuck_at_change_ == map_changes_ && start.head<3>() == stuck_start_) {
+        path->clear();  // "answered" with no path: plan() reports kNoSolution
+        return true;
+      }
+      return false;
+    }
     *path = found.path;
     result.from_lattice = true;
     return true;
@@ -374,6 +384,11 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, lattice);
   impl_->prm->clearQuery();
   result.roadmap_grew = impl_->prm->grew();
+  if (result.roadmap_grew && lattice_tried && !result.from_lattice &&
+      ob::PlannerStatus::StatusType(status) != ob::PlannerStatus::EXACT_SOLUTION) {
+    stuck_start_ = start.head<3>();
+    stuck_at_change_ = map_changes_;
+  }
 
   PathStatus failure = PathStatus::kExactSolution;
   switch (ob::PlannerStatus::StatusType(status)) {

@@ -172,6 +172,38 @@ TEST(LatticeSearch, LatticeLeavesTheRoadmapHalfOfACallersCap) {
   EXPECT_GT(a.seconds, 0.9 * cap);
 }
 
+// A start from which the lattice and then a growth found no way out grows
+// the roadmap no more until the map changes; the lattice is still asked.
+TEST(LatticeSearch, AStuckStartGrowsTheRoadmapOnceUntilTheMapChanges) {
+  WallWorld world(false);  // no gap: the far side is sealed off
+  const Eigen::Vector4d start(-3.5, -3.0, 2.5, 0.0), goal(3.5, -2.8, 2.4, 1.0), other(3.5, 2.0, 2.5, 0.0);
+  PathPlannerConfig config = seededPlannerConfig(3, 300, 10.0);
+  config.lattice_step = 0.5;
+  config.lattice_max_nodes = 2000;
+  PathPlanner planner(config);
+  ASSERT_TRUE(planner.setMap(&world.collision(), world.bounds()).ok());
+  const PathResult first = planner.plan(start, goal);
+  EXPECT_EQ(first.status, PathStatus::kNoSolution);
+  EXPECT_GT(first.lattice_nodes, 0u);
+  EXPECT_TRUE(first.roadmap_grew);
+  const size_t grown = planner.roadmapVertices();
+  EXPECT_GT(grown, 100u);
+  const PathResult second = planner.plan(start, other);
+  EXPECT_EQ(second.status, PathStatus::kNoSolution);
+  EXPECT_GT(second.lattice_nodes, 0u) << "the lattice is still asked";
+  EXPECT_FALSE(second.roadmap_grew);
+  EXPECT_LE(planner.roadmapVertices(), grown + 2) << "only the query's start and goal";
+  // From elsewhere the roadmap grows as before, and from the same start once the map changed.
+  const PathResult elsewhere = planner.plan(Eigen::Vector4d(-3.0, 2.0, 2.5, 0.0), goal);
+  EXPECT_TRUE(elsewhere.roadmap_grew);
+  planner.mapChanged();
+  const PathResult changed = planner.plan(start, other);
+  EXPECT_TRUE(changed.roadmap_grew);
+  // A way that exists is still found from a stuck start.
+  const PathResult near = planner.plan(start, Eigen::Vector4d(-3.5, 2.0, 2.5, 0.0));
+  EXPECT_EQ(near.status, PathStatus::kExactSolution);
+}
+
 TEST(LatticeSearch, PlannerConfigValidatesTheLatticeKeys) {
   PathPlannerConfig c;
   c.lattice_step = -0.1;

@@ -162,6 +162,14 @@ class PathPlanner {
   struct Impl;
   PathPlannerConfig config_;
   std::unique_ptr<Impl> impl_;
+  // With the lattice on: the start from which the lattice and then a growth
+  // found no path, and the map change count then. From that start, until
+  // the map changes, the roadmap does not grow again: each such growth
+  // failed as the first did and left its samples in the roadmap (a deck's
+  // inside, docs/scaling.md: 69 failed growths and 130k vertices in one
+  // decision).
+  Eigen::Vector3d stuck_start_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  uint64_t map_changes_ = 0, stuck_at_change_ = 0;
 };
 
 }  // namespace surface_nbv
