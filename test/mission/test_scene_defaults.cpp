@@ -462,8 +462,8 @@ void flyWithNoConfig(FileMission* m) {
   c.scene.scene = m->file;
   c.scene.transform = m->load;
   if (m->load.scale != 1.0) c.given_keys.insert("depth_sim/scene_scale");
-  // Repeatable legs (roadmap samples, not wall time), as config/*.yaml ship;
-  // given, so that the small class's reference (box.yaml, none) keeps them.
+  // Repeatable legs (roadmap samples, not wall time), as config/*.yaml ship,
+  // and given, so that the small class's reference (box.yaml, none) keeps them.
   c.path.iteration_budget = 3000;
   c.path.time_budget = 30.0;
   c.given_keys.insert({"mission/path_iterations", "mission/path_time_budget"});

@@ -116,8 +116,8 @@ class FloodFromTheLeft : public ::testing::Test {
       start[a] = static_cast<int>(std::floor((from[a] - world.bounds().min[a]) / map.cellSize()));
     }
   }
-  // The cells where `space` and the reference flood `expected` disagree;
-  // `count` gets the reference's cells.
+  // The cells where `space` and the reference flood `expected` disagree, and
+  // in `count` the reference's cells.
   size_t mismatches(const ReachableSpace& space, const std::vector<uint8_t>& expected, size_t* count) const {
     size_t wrong = 0;
     *count = 0;

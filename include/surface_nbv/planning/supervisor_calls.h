@@ -1,7 +1,7 @@
 // A mission's calls to its MissionSupervisor (SupervisorCall, recorded with
 // MissionSupervisor::setRecording) as a CSV file, and their replay.
 //
-// nbv_planner writes supervisor_calls.csv beside mission_report.json;
+// nbv_planner writes supervisor_calls.csv beside mission_report.json, and
 // test_mission_node replays it through a supervisor built from the
 // planner's own parameters, and test_supervisor_replay does the same with a
 // headless mission's calls: both drivers take the answers of the one set of

@@ -29,8 +29,8 @@ class VoxelStateGrid {
   void reset(const TsdfMap& map);
   // True when reset() was called for a map with this geometry.
   bool matches(const TsdfMap& map) const;
-  // Copies the states of one block slot from `map` (unknown if unallocated);
-  // true when a voxel's state differs from the one held before.
+  // Copies the states of one block slot from `map` (unknown if unallocated),
+  // and says whether a voxel's state differs from the one held before.
   bool refreshBlock(const TsdfMap& map, const Eigen::Vector3i& block);
 
   // Voxel (i, j, k) with each coordinate in [-1, 8 * blocks]; see the contract above.
