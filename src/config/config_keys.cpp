@@ -98,6 +98,7 @@ void readExplorerKeys(ParamSource& m, ExplorerConfig* e) {
   m.get("pool_unknown_below", &e->pool_unknown_below);
   m.get("path_distances", &e->path_distances);
   m.get("check_reachable", &e->check_reachable);
+  m.get("corridor_guide", &e->corridor_guide);
   m.get("empty_updates_before_done", &e->empty_updates_before_done);
   m.get("max_leg_attempts", &e->max_leg_attempts);
   m.get("leg_time_budget", &e->leg_time_budget);

@@ -178,6 +178,8 @@ TrialRow trialRow(int k, unsigned seed, const MissionResult& r, const EvalResult
   row.blacklisted = r.blacklisted;
   row.roadmap_growths = r.explorer.roadmap_growths;
   row.roadmap_vertices = r.explorer.roadmap_vertices;
+  row.lattice_legs = r.explorer.lattice_legs;
+  row.corridor_legs = r.explorer.corridor_legs;
   row.final_inside = r.final_inside;
   row.frontier_ms_max = r.max_frontier_ms;
   row.plan_ms_max = r.max_plan_ms;
@@ -251,6 +253,7 @@ std::string reportJson(const ReportHeader& h, const std::vector<Stat>& stats) {
     json.value("leg_failures", r.failures).value("blacklisted", r.blacklisted).value("final_c_ins", r.final_inside);
     json.value("max_frontier_ms", r.frontier_ms_max).value("max_plan_ms", r.plan_ms_max);
     json.value("roadmap_growths", r.roadmap_growths).value("roadmap_vertices", r.roadmap_vertices);
+    json.value("lattice_legs", r.lattice_legs).value("corridor_legs", r.corridor_legs);
     if (config.pose_error.enabled()) {  // the estimate and the fused poses against the truth (pose_error.h)
       for (const auto& [name, e] : {std::make_pair("pose_error", r.pose_error),
                                     std::make_pair("fused_pose_error", r.fused_pose_error)}) {

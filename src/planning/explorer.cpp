@@ -271,8 +271,9 @@ bool Explorer::pathBlocked(const Eigen::Vector4d& uav) const {
   return false;
 }
 
-PathResult Explorer::planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds) {
-  PathResult r = planner_.plan(from, to, max_seconds);
+PathResult Explorer::planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds,
+                             const std::vector<Eigen::Vector3d>* guide) {
+  PathResult r = planner_.plan(from, to, max_seconds, guide);
   stats_.roadmap_growths += r.roadmap_grew ? 1 : 0;
   stats_.roadmap_vertices = planner_.roadmapVertices();
   return r;
@@ -366,13 +367,15 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
         continue;
       }
     }
-    PathResult leg = planLeg(from, target, left());
+    std::vector<Eigen::Vector3d> guide;
+    if (config_.corridor_guide && config_.check_reachable && map_ != nullptr) reach_.corridor(target.head<3>(), &guide);
+    PathResult leg = planLeg(from, target, left(), &guide);
     // The frontier's clearance test and the planner's (radius plus half a
     // motion-check step) differ slightly: a target just inside the planner's
     // margin is moved to the nearest point that passes, within reach_tolerance.
     if (leg.status == PathStatus::kInvalidGoal && map_ != nullptr) {
       Eigen::Vector4d moved = target;
-      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planLeg(from, moved, left());
+      if (nearestFree(target.head<3>(), config_.reach_tolerance, &moved)) leg = planLeg(from, moved, left(), &guide);
     }
     d->path_status = leg.status;
     if (hasPath(leg.status)) {
@@ -388,6 +391,7 @@ void Explorer::nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d) {
       d->target = target;
       ++stats_.legs;
       if (leg.from_lattice) ++stats_.lattice_legs;
+      if (leg.from_guide) ++stats_.corridor_legs;
       d->timings.path_ms = msSince(t0);
       return;
     }

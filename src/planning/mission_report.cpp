@@ -21,6 +21,7 @@ std::string missionReportJson(const MissionReport& r) {
   json.value("full_recomputes", s.full_recomputes).value("local_updates", s.local_updates).value("legs", s.legs);
   json.value("leg_failures", s.leg_failures).value("budget_stops", s.budget_stops);
   json.value("lattice_legs", s.lattice_legs);
+  json.value("corridor_legs", s.corridor_legs);
   json.value("roadmap_growths", s.roadmap_growths).value("roadmap_vertices", s.roadmap_vertices);
   json.value("leg_end_wait_s", r.leg_end_wait_s);
   json.value("leg_time_budget_s", r.leg_time_budget);

@@ -170,6 +170,54 @@ struct PathPlanner::Impl {
     return si->checkMotion(from, to);
   }
 
+  bool pointFree(const Eigen::Vector3d& p) {
+    setPoint(from, p);
+    return si->isValid(from);
+  }
+
+  // A path start -> goal along `guide` (PathPlanner::plan): from each point
+  // reached, the farthest of the next kGuideWindow guide points (the goal
+  // last) in free straight motion; where none is, the lattice from there to
+  // the next guide point the planner accepts, with `repair_nodes` nodes.
+  // False when a repair fails, the lattice is off or should_stop says so.
+  static constexpr size_t kGuideWindow = 48;
+  bool followGuide(const Eigen::Vector3d& start, const Eigen::Vector3d& goal, const std::vector<Eigen::Vector3d>& guide,
+                   double lattice_step, size_t repair_nodes, const std::function<bool()>& should_stop,
+                   std::vector<Eigen::Vector3d>* path, size_t* expanded) {
+    std::vector<Eigen::Vector3d> points = guide;
+    points.push_back(goal);
+    const size_t n = points.size();
+    path->assign(1, start);
+    Eigen::Vector3d at = start;
+    size_t next = 0;  // the first guide point not yet passed
+    while (next < n) {
+      if (should_stop()) return false;
+      bool moved = false;
+      for (size_t k = std::min(next + kGuideWindow, n) ; k-- > next;) {
+        if (motionFree(at, points[k])) {
+          at = points[k];
+          path->push_back(at);
+          next = k + 1;
+          moved = true;
+          break;
+        }
+      }
+      if (moved) continue;
+      if (!(lattice_step > 0.0)) return false;
+      size_t j = next;
+      while (j < n && !pointFree(points[j])) ++j;
+      if (j == n) return false;
+      const auto free = [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return motionFree(a, b); };
+      const LatticeSearchResult r = latticeSearch(at, points[j], lattice_step, repair_nodes, free, should_stop);
+      *expanded += r.expanded;
+      if (!r.found) return false;
+      path->insert(path->end(), r.path.begin() + 1, r.path.end());
+      at = points[j];
+      next = j + 1;
+    }
+    return true;
+  }
+
   static int64_t cellKey(const Eigen::Vector3i& i) {
     constexpr int64_t kOffset = 1 << 20;
     return ((i.x() + kOffset) << 42) | ((i.y() + kOffset) << 21) | (i.z() + kOffset);
@@ -293,7 +341,8 @@ std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> PathPlanner::roadmapEdg
 
 double PathPlanner::clearance() const { return config_.collision_radius + 0.5 * impl_->resolution; }
 
-PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal, double max_seconds) {
+PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal, double max_seconds,
+                             const std::vector<Eigen::Vector3d>* guide) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [t0] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   PathResult result;
@@ -357,7 +406,19 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   // the wall-time budget again as a safety net).
   bool lattice_tried = false;
   double lattice_until = lattice_cap;  // before the growth; after it (kGrowOnly), the whole cap
+  bool guide_tried = false;
   const auto lattice = [&](std::vector<Eigen::Vector3d>* path) {
+    if (guide != nullptr && !guide->empty() && !guide_tried) {
+      guide_tried = true;
+      const double deadline = std::min(elapsed() + budget_s, lattice_until);
+      if (impl_->followGuide(start.head<3>(), goal.head<3>(), *guide, config_.lattice_step,
+                             std::max<size_t>(config_.lattice_max_nodes / 10, 1), [&elapsed, deadline] {
+                               return elapsed() > deadline;
+                             }, path, &result.lattice_nodes)) {
+        result.from_guide = true;
+        return true;
+      }
+    }
     if (!(config_.lattice_step > 0.0)) return false;
     lattice_tried = true;
     const double deadline = std::min(elapsed() + budget_s, lattice_until);
@@ -366,7 +427,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
         start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
         [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
         [&elapsed, deadline] { return elapsed() > deadline; });
-    result.lattice_nodes = found.expanded;
+    result.lattice_nodes += found.expanded;
     if (!found.found) {
       // No growth from a start where one failed after the lattice, until the map changes.
       if (stuck_at_change_ == map_changes_ && start.head<3>() == stuck_start_) {
@@ -384,7 +445,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
       impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, lattice);
   impl_->prm->clearQuery();
   result.roadmap_grew = impl_->prm->grew();
-  if (result.roadmap_grew && lattice_tried && !result.from_lattice &&
+  if (result.roadmap_grew && lattice_tried && !result.from_lattice && !result.from_guide &&
       ob::PlannerStatus::StatusType(status) != ob::PlannerStatus::EXACT_SOLUTION) {
     stuck_start_ = start.head<3>();
     stuck_at_change_ = map_changes_;
@@ -404,7 +465,9 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   }
   // The modes that only grow (kGrowOnly) ask the lattice after the growth.
   lattice_until = cap;
-  if (failure != PathStatus::kExactSolution && (lattice_tried || !lattice(&raw))) return finish(failure);
+  if (failure != PathStatus::kExactSolution && (lattice_tried || result.from_guide || !lattice(&raw))) {
+    return finish(failure);
+  }
 
   // Greedy shortcutting: from each kept point jump to the farthest later
   // point reachable by a collision-free straight motion.
@@ -424,7 +487,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   for (size_t k : kept)
     if (points.empty() || raw[k] != points.back()) points.push_back(raw[k]);
   if (points.size() == 1) points.push_back(raw.back());
-  if (result.from_lattice) impl_->prm->addFreePath(points);
+  if (result.from_lattice || result.from_guide) impl_->prm->addFreePath(points);
   std::vector<double> arc(points.size(), 0.0);
   for (size_t k = 1; k < points.size(); ++k) arc[k] = arc[k - 1] + (points[k] - points[k - 1]).norm();
   result.length = arc.back();

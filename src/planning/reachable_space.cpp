@@ -1,6 +1,8 @@
 #include "surface_nbv/planning/reachable_space.h"
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
 
 namespace surface_nbv {
 
@@ -40,11 +42,14 @@ void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, con
   auto open = [&](const Eigen::Vector3i& c) {
     return (c.array() >= 0).all() && (c.array() < cells_.array()).all() && state_[index(c)] == kOpen;
   };
-  std::vector<Eigen::Vector3i> stack;
+  // Breadth first, so that each filled cell keeps the direction to the
+  // neighbour it was reached from on a shortest 6-connected way (corridor()).
+  // The queue holds cell indices: only the front of the fill at a time.
+  std::deque<size_t> queue;
   Eigen::Vector3i start;
   if (!cellOf(from, &start)) return;
   if (open(start)) {
-    stack.push_back(start);
+    queue.push_back(index(start));
   } else {
     const int n = static_cast<int>(std::ceil(seed_radius / cell_));
     for (int k = -n; k <= n; ++k)
@@ -52,54 +57,84 @@ void ReachableSpace::fill(const CollisionMap& map, const AlignedBox& bounds, con
         for (int i = -n; i <= n; ++i) {
           const Eigen::Vector3i c = start + Eigen::Vector3i(i, j, k);
           if (Eigen::Vector3d(i, j, k).norm() * cell_ <= seed_radius && open(c)) {
-            state_[index(c)] = kFilled;
-            stack.push_back(c);
+            state_[index(c)] = kSeed;
+            queue.push_back(index(c));
           }
         }
   }
-  if (stack.empty()) return;
+  if (queue.empty()) return;
   seeded_ = true;
-  for (const Eigen::Vector3i& c : stack) state_[index(c)] = kFilled;
-  filled_ = stack.size();
-  const int nx = cells_.x(), ny = cells_.y(), nz = cells_.z();
-  const ptrdiff_t step_x = static_cast<ptrdiff_t>(ny) * nz, step_y = nz;
-  while (!stack.empty()) {
-    const Eigen::Vector3i c = stack.back();
-    stack.pop_back();
-    const ptrdiff_t i = static_cast<ptrdiff_t>(index(c));
-    // The six neighbours, each inside the grid and still open.
-    const auto visit = [&](bool inside, ptrdiff_t offset, const Eigen::Vector3i& d) {
-      if (!inside || state_[i + offset] != kOpen) return;
-      state_[i + offset] = kFilled;
+  for (size_t i : queue) state_[i] = kSeed;
+  filled_ = queue.size();
+  const size_t nz = static_cast<size_t>(cells_.z()), nyz = static_cast<size_t>(cells_.y()) * nz;
+  const size_t nx = static_cast<size_t>(cells_.x()), ny = static_cast<size_t>(cells_.y());
+  while (!queue.empty()) {
+    const size_t i = queue.front();
+    queue.pop_front();
+    const size_t x = i / nyz, y = (i / nz) % ny, z = i % nz;
+    // The six neighbours, each inside the grid and still open; `back` is
+    // the direction from the neighbour to this cell.
+    const auto visit = [&](bool inside, size_t j, uint8_t back) {
+      if (!inside || state_[j] != kOpen) return;
+      state_[j] = static_cast<uint8_t>(kFilled + back);
       ++filled_;
-      stack.push_back(d);
+      queue.push_back(j);
     };
-    visit(c.x() + 1 < nx, step_x, c + Eigen::Vector3i(1, 0, 0));
-    visit(c.x() > 0, -step_x, c - Eigen::Vector3i(1, 0, 0));
-    visit(c.y() + 1 < ny, step_y, c + Eigen::Vector3i(0, 1, 0));
-    visit(c.y() > 0, -step_y, c - Eigen::Vector3i(0, 1, 0));
-    visit(c.z() + 1 < nz, 1, c + Eigen::Vector3i(0, 0, 1));
-    visit(c.z() > 0, -1, c - Eigen::Vector3i(0, 0, 1));
+    visit(x + 1 < nx, i + nyz, 1);
+    visit(x > 0, i - nyz, 0);
+    visit(y + 1 < ny, i + nz, 3);
+    visit(y > 0, i - nz, 2);
+    visit(z + 1 < nz, i + 1, 5);
+    visit(z > 0, i - 1, 4);
   }
 }
 
 bool ReachableSpace::filled(const Eigen::Vector3i& cell) const {
-  return (cell.array() >= 0).all() && (cell.array() < cells_.array()).all() && state_[index(cell)] == kFilled;
+  return (cell.array() >= 0).all() && (cell.array() < cells_.array()).all() && state_[index(cell)] >= kFilled;
 }
 
 bool ReachableSpace::reachable(const Eigen::Vector3d& p) const {
   if (!seeded_) return true;
   Eigen::Vector3i c;
   if (!cellOf(p, &c)) return false;
-  if (state_[index(c)] == kFilled) return true;
+  if (state_[index(c)] >= kFilled) return true;
   for (int a = 0; a < 3; ++a) {
     for (int s = -1; s <= 1; s += 2) {
       Eigen::Vector3i d = c;
       d[a] += s;
-      if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] == kFilled) return true;
+      if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] >= kFilled) return true;
     }
   }
   return false;
+}
+
+bool ReachableSpace::corridor(const Eigen::Vector3d& to, std::vector<Eigen::Vector3d>* points) const {
+  points->clear();
+  if (!seeded_) return false;
+  Eigen::Vector3i c;
+  if (!cellOf(to, &c)) return false;
+  if (state_[index(c)] < kFilled) {  // a 6-neighbour, as reachable() allows
+    bool found = false;
+    for (int a = 0; a < 3 && !found; ++a)
+      for (int s = -1; s <= 1 && !found; s += 2) {
+        Eigen::Vector3i d = c;
+        d[a] += s;
+        if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] >= kFilled) c = d, found = true;
+      }
+    if (!found) return false;
+  }
+  // Back along the directions the fill stored, to a seed; each step is one
+  // cell closer to it, so this ends.
+  static const int kStep[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (;;) {
+    points->push_back(origin_ + cell_ * (c.cast<double>().array() + 0.5).matrix());
+    const uint8_t s = state_[index(c)];
+    if (s == kSeed) break;
+    const int dir = s - kFilled;
+    c += Eigen::Vector3i(kStep[dir][0], kStep[dir][1], kStep[dir][2]);
+  }
+  std::reverse(points->begin(), points->end());
+  return true;
 }
 
 }  // namespace surface_nbv

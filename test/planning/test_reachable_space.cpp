@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <vector>
 
 #include "planning_test_worlds.h"
@@ -203,4 +205,114 @@ TEST_F(FloodFromTheLeft, PlannerTestFloodsTheCellsWhoseCentreIsFree) {
     EXPECT_EQ(centre_wrong, 0u) << "clearance " << clear;
     EXPECT_LT(count, centre_count) << "clearance " << clear;
   }
+}
+
+// corridor(): from the seed cell through the gap to the target's cell, one
+// cell per step, every step a filled cell, as short as a breadth-first
+// search over the reference flood's cells says; nothing across a closed wall.
+TEST_F(FloodFromTheLeft, CorridorIsAShortestWayThroughTheFilledCells) {
+  const double clear = 1.0;
+  ReachableSpace space;
+  space.fill(map, world.bounds(), from, clear);
+  const Eigen::Vector3d to(3.0, -3.0, 2.5);
+  ASSERT_TRUE(space.reachable(to));
+  std::vector<Eigen::Vector3d> way;
+  ASSERT_TRUE(space.corridor(to, &way));
+  ASSERT_GE(way.size(), 2u);
+  const double h = map.cellSize();
+  const auto cellOf = [&](const Eigen::Vector3d& p) {
+    return ((p - world.bounds().min) / h).array().floor().cast<int>().matrix().eval();
+  };
+  EXPECT_EQ(cellOf(way.front()), start);
+  EXPECT_EQ(cellOf(way.back()), cellOf(to));
+  for (size_t k = 0; k < way.size(); ++k) {
+    EXPECT_TRUE(space.filled(cellOf(way[k]))) << k;
+    if (k > 0) EXPECT_NEAR((way[k] - way[k - 1]).norm(), h, 1e-9) << k;
+  }
+  // Breadth-first distances over the reference flood's cells.
+  const std::vector<uint8_t> in = referenceFill(map, start, clear);
+  auto at = [&](const Eigen::Vector3i& c) { return static_cast<size_t>((c.x() * n.y() + c.y()) * n.z() + c.z()); };
+  std::vector<int> dist(in.size(), -1);
+  std::vector<Eigen::Vector3i> queue{start};
+  dist[at(start)] = 0;
+  for (size_t head = 0; head < queue.size(); ++head) {
+    const Eigen::Vector3i c = queue[head];
+    for (int a = 0; a < 3; ++a)
+      for (int s = -1; s <= 1; s += 2) {
+        Eigen::Vector3i d = c;
+        d[a] += s;
+        if ((d.array() < 0).any() || (d.array() >= n.array()).any() || !in[at(d)] || dist[at(d)] >= 0) continue;
+        dist[at(d)] = dist[at(c)] + 1;
+        queue.push_back(d);
+      }
+  }
+  ASSERT_GT(dist[at(cellOf(to))], 0);
+  EXPECT_EQ(static_cast<int>(way.size()) - 1, dist[at(cellOf(to))]);
+  // The way crosses the wall's plane only at the gap: it is longer than the
+  // straight line between its ends.
+  EXPECT_GT((way.size() - 1) * h, (way.back() - way.front()).norm() + 1.0);
+
+  world.closeGap();
+  space.fill(world.collision(), world.bounds(), from, clear);
+  EXPECT_FALSE(space.corridor(to, &way));
+  EXPECT_TRUE(way.empty());
+  ReachableSpace unfilled;
+  EXPECT_FALSE(unfilled.corridor(to, &way)) << "nothing seeded";
+}
+
+// PathPlanner::plan with the corridor as its guide: the path follows it
+// (from_guide), is collision-free, and costs the lattice fewer nodes than
+// the lattice's own search from scratch; a guide the planner cannot follow
+// (straight through the wall) falls back to the lattice.
+TEST_F(FloodFromTheLeft, PlannerFollowsTheCorridorAndFallsBackFromABadGuide) {
+  PathPlannerConfig config = seededPlannerConfig(3, 0, 10.0);
+  config.lattice_step = 0.3;
+  const Eigen::Vector4d a(from.x(), from.y(), from.z(), 0.0), b(3.0, -3.0, 2.5, 0.0);
+  const auto fresh = [&] {
+    auto p = std::make_unique<PathPlanner>(config);
+    EXPECT_TRUE(p->setMap(&map, world.bounds()).ok());
+    return p;
+  };
+  ReachableSpace space;
+  auto probe = fresh();
+  space.fill(map, world.bounds(), from, probe->clearance());
+  std::vector<Eigen::Vector3d> guide;
+  ASSERT_TRUE(space.corridor(b.head<3>(), &guide));
+
+  const PathResult alone = fresh()->plan(a, b);
+  ASSERT_TRUE(hasPath(alone.status));
+  ASSERT_TRUE(alone.from_lattice);
+  auto planner = fresh();
+  const PathResult guided = planner->plan(a, b, std::numeric_limits<double>::infinity(), &guide);
+  ASSERT_TRUE(hasPath(guided.status)) << toString(guided.status);
+  EXPECT_TRUE(guided.from_guide);
+  EXPECT_FALSE(guided.from_lattice);
+  EXPECT_LT(guided.lattice_nodes, alone.lattice_nodes);
+  EXPECT_TRUE(guided.path.front().head<3>().isApprox(a.head<3>()));
+  EXPECT_TRUE(guided.path.back().head<3>().isApprox(b.head<3>()));
+  const double radius = config.collision_radius;
+  for (size_t k = 1; k < guided.path.size(); ++k) {
+    const Eigen::Vector3d p = guided.path[k - 1].head<3>(), q = guided.path[k].head<3>();
+    const int steps = static_cast<int>(std::ceil((q - p).norm() / 0.02));
+    for (int s = 0; s <= steps; ++s) {
+      const Eigen::Vector3d x = p + (q - p) * (static_cast<double>(s) / std::max(steps, 1));
+      ASSERT_TRUE(map.isFree(x, radius)) << "segment " << k << " at " << x.transpose();
+    }
+  }
+  EXPECT_LT(guided.length, 1.5 * alone.length);
+  // The way it found joined the roadmap: asked again, the graph answers.
+  const PathResult again = planner->plan(a, b, std::numeric_limits<double>::infinity(), &guide);
+  ASSERT_TRUE(hasPath(again.status));
+  EXPECT_FALSE(again.from_guide);
+
+  // Straight through the wall: the point in it is skipped, the lattice
+  // repair from the start to the goal needs as many nodes as the search
+  // alone, more than its tenth of the budget, so the lattice takes over.
+  config.lattice_max_nodes = alone.lattice_nodes + 10;
+  const std::vector<Eigen::Vector3d> through_wall{a.head<3>(), Eigen::Vector3d(0.0, -3.0, 2.5), b.head<3>()};
+  const PathResult bad = fresh()->plan(a, b, std::numeric_limits<double>::infinity(), &through_wall);
+  ASSERT_TRUE(hasPath(bad.status));
+  EXPECT_FALSE(bad.from_guide);
+  EXPECT_TRUE(bad.from_lattice);
+  EXPECT_GT(bad.lattice_nodes, alone.lattice_nodes) << "the failed repair's nodes count too";
 }

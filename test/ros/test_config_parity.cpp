@@ -98,6 +98,7 @@ void expectSameExplorer(const ExplorerConfig& a, const ExplorerConfig& b, const 
   EXPECT_EQ(a.min_visible, b.min_visible) << what;
   EXPECT_DOUBLE_EQ(a.pool_unknown_below, b.pool_unknown_below) << what;
   EXPECT_EQ(a.check_reachable, b.check_reachable) << what;
+  EXPECT_EQ(a.corridor_guide, b.corridor_guide) << what;
   EXPECT_DOUBLE_EQ(a.turn_distance, b.turn_distance) << what;
   EXPECT_EQ(a.max_visits, b.max_visits) << what;
   EXPECT_EQ(a.gaze.enabled, b.gaze.enabled) << what;

@@ -80,6 +80,7 @@ struct TrialRow {
   FlightProfile profile;
   size_t frames = 0, updates = 0, full = 0, local = 0, legs = 0, failures = 0, blacklisted = 0, final_inside = 0;
   size_t roadmap_growths = 0, roadmap_vertices = 0;  // the leg planner's (ExplorerStats)
+  size_t lattice_legs = 0, corridor_legs = 0;         // legs found by the lattice, along the corridor
 };
 
 struct TrialResult {

@@ -92,6 +92,12 @@ struct ExplorerConfig {
   // space (ReachableSpace, filled once per map version); one that does not
   // counts a failure at once instead of costing the planner its budget.
   bool check_reachable = false;
+  // With check_reachable: each leg hands the planner the fill's shortest
+  // way to the target (ReachableSpace::corridor) as a guide, followed when
+  // the roadmap has no path, before its lattice and its growth. From inside
+  // a deck to a target decks away the lattice, searching everything nearer
+  // first, spent its node budget (seconds per leg, docs/scaling.md).
+  bool corridor_guide = false;
   // The fill keeps cells whose centre is the planner's clearance (the
   // collision radius plus half a motion-check step, PathPlanner::clearance)
   // from obstacles: what the planner accepts.
@@ -172,6 +178,7 @@ struct ExplorerStats {
   size_t promoted = 0;          // head_lookahead: targets flown before the tour's head
   size_t budget_stops = 0;      // decisions that spent leg_time_budget before finding a leg
   size_t lattice_legs = 0;      // legs the path planner's lattice fallback found (path_lattice_step)
+  size_t corridor_legs = 0;     // legs that follow the reachable space's corridor (corridor_guide)
   size_t roadmap_growths = 0;   // leg plans whose roadmap held no path and was sampled larger
   size_t roadmap_vertices = 0;  // the leg planner's roadmap after the last leg plan
   double tour_cost = 0.0;       // of the last full recomputation
@@ -245,7 +252,8 @@ class Explorer {
   // written into q's first three coordinates.
   bool nearestFree(const Eigen::Vector3d& p, double within, Eigen::Vector4d* q) const;
   // planner_.plan(), its roadmap's growth counted in stats_.
-  PathResult planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds);
+  PathResult planLeg(const Eigen::Vector4d& from, const Eigen::Vector4d& to, double max_seconds,
+                     const std::vector<Eigen::Vector3d>* guide = nullptr);
   void nextLeg(const Eigen::Vector4d& uav, ExplorerDecision* d);
   // The wanted viewpoints of the last frontier, hashed by position, with
   // their unknown_fraction (pool_unknown_below) and their gain in the

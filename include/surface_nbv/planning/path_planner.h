@@ -104,7 +104,8 @@ struct PathResult {
   double length = 0.0;                // translational length [m]
   double seconds = 0.0;               // wall time of the call
   bool from_lattice = false;          // the lattice fallback found the path
-  size_t lattice_nodes = 0;           // nodes the lattice fallback expanded (0: not run)
+  bool from_guide = false;            // the path follows plan()'s guide
+  size_t lattice_nodes = 0;           // nodes the lattice expanded, for the guide too (0: not run)
   bool roadmap_grew = false;          // the roadmap held no path and was sampled larger
 };
 
@@ -133,8 +134,16 @@ class PathPlanner {
   // calls (ExplorerConfig::leg_time_budget). Past it the answer is kTimeout.
   // With the lattice on, the roadmap stops at half the cap and leaves the
   // lattice the rest.
+  //
+  // `guide` (optional): a way from near the start to near the goal, such as
+  // ReachableSpace::corridor(). When the roadmap's graph holds no path it is
+  // followed before the lattice and the growth: straight motions between
+  // its points, the lattice (with a tenth of its node budget) across the
+  // stretches the planner refuses. A far goal then costs a walk along the
+  // guide instead of a lattice search over everything nearer.
   PathResult plan(const Eigen::Vector4d& start, const Eigen::Vector4d& goal,
-                  double max_seconds = std::numeric_limits<double>::infinity());
+                  double max_seconds = std::numeric_limits<double>::infinity(),
+                  const std::vector<Eigen::Vector3d>* guide = nullptr);
   // Length of plan(start, goal) with yaw 0, or +infinity if it has no path.
   double pathLength(const Eigen::Vector3d& start, const Eigen::Vector3d& goal);
 

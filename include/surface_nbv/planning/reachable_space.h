@@ -45,6 +45,12 @@ class ReachableSpace {
   bool reachable(const Eigen::Vector3d& p) const;
   // Whether the last fill reached this cell (false outside the grid).
   bool filled(const Eigen::Vector3i& cell) const;
+  // A shortest 6-connected way through the filled cells from a seed cell to
+  // `to`'s cell (or its filled 6-neighbour): the cell centres, seed first.
+  // False (and empty) when `to` is not reachable() or nothing was seeded.
+  // A guide, not a path: a centre may be closer to an obstacle than the
+  // planner accepts (the fill's test is its own, see above).
+  bool corridor(const Eigen::Vector3d& to, std::vector<Eigen::Vector3d>* points) const;
   // Cells filled by the last fill.
   size_t size() const { return filled_; }
   bool seeded() const { return seeded_; }
@@ -57,12 +63,14 @@ class ReachableSpace {
                static_cast<size_t>(cells_.z()) +
            static_cast<size_t>(c.z());
   }
-  static constexpr uint8_t kOpen = 1, kFilled = 2;  // 0: not clear
+  // 0: not clear. A filled cell holds kFilled + the direction (0 to 5: +x,
+  // -x, +y, -y, +z, -z) to the cell it was reached from, or kSeed.
+  static constexpr uint8_t kOpen = 1, kFilled = 2, kSeed = kFilled + 6;
 
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i cells_ = Eigen::Vector3i::Zero();
   double cell_ = 1.0;
-  std::vector<uint8_t> state_;  // per cell: 0, kOpen or kFilled
+  std::vector<uint8_t> state_;  // per cell: 0, kOpen, kFilled + direction or kSeed
   size_t filled_ = 0;
   bool seeded_ = false;
 };
