@@ -193,7 +193,7 @@ struct PathPlanner::Impl {
     while (next < n) {
       if (should_stop()) return false;
       bool moved = false;
-      for (size_t k = std::min(next + kGuideWindow, n) ; k-- > next;) {
+      for (size_t k = std::min(next + kGuideWindow, n); k-- > next;) {
         if (motionFree(at, points[k])) {
           at = points[k];
           path->push_back(at);

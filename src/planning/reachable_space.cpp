@@ -93,36 +93,31 @@ bool ReachableSpace::filled(const Eigen::Vector3i& cell) const {
   return (cell.array() >= 0).all() && (cell.array() < cells_.array()).all() && state_[index(cell)] >= kFilled;
 }
 
-bool ReachableSpace::reachable(const Eigen::Vector3d& p) const {
-  if (!seeded_) return true;
-  Eigen::Vector3i c;
-  if (!cellOf(p, &c)) return false;
-  if (state_[index(c)] >= kFilled) return true;
+bool ReachableSpace::filledAt(const Eigen::Vector3d& p, Eigen::Vector3i* cell) const {
+  if (!cellOf(p, cell)) return false;
+  if (state_[index(*cell)] >= kFilled) return true;
   for (int a = 0; a < 3; ++a) {
     for (int s = -1; s <= 1; s += 2) {
-      Eigen::Vector3i d = c;
+      Eigen::Vector3i d = *cell;
       d[a] += s;
-      if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] >= kFilled) return true;
+      if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] >= kFilled) {
+        *cell = d;
+        return true;
+      }
     }
   }
   return false;
 }
 
+bool ReachableSpace::reachable(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i c;
+  return !seeded_ || filledAt(p, &c);
+}
+
 bool ReachableSpace::corridor(const Eigen::Vector3d& to, std::vector<Eigen::Vector3d>* points) const {
   points->clear();
-  if (!seeded_) return false;
   Eigen::Vector3i c;
-  if (!cellOf(to, &c)) return false;
-  if (state_[index(c)] < kFilled) {  // a 6-neighbour, as reachable() allows
-    bool found = false;
-    for (int a = 0; a < 3 && !found; ++a)
-      for (int s = -1; s <= 1 && !found; s += 2) {
-        Eigen::Vector3i d = c;
-        d[a] += s;
-        if (d[a] >= 0 && d[a] < cells_[a] && state_[index(d)] >= kFilled) c = d, found = true;
-      }
-    if (!found) return false;
-  }
+  if (!seeded_ || !filledAt(to, &c)) return false;
   // Back along the directions the fill stored, to a seed; each step is one
   // cell closer to it, so this ends.
   static const int kStep[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};

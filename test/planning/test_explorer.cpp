@@ -536,3 +536,26 @@ TEST(Explorer, ConfigRefusesBadValues) {
 }
 
 }  // namespace
+
+// corridor_guide: with check_reachable, the first leg to a target behind the
+// wall follows the reachable space's corridor (the roadmap is empty, so the
+// guide answers before any growth), free of the wall; without it the same
+// leg comes from the roadmap.
+TEST(Explorer, CorridorGuideGivesTheLegBehindTheWall) {
+  WallWorld world(true);
+  const Frontier f = makeFrontier({{{4, -3, 2.5}, {4, -4, 2.5}}});
+  for (const bool guide : {false, true}) {
+    ExplorerConfig config;
+    config.check_reachable = true;
+    config.corridor_guide = guide;
+    PathPlannerConfig path = pathConfig();
+    path.lattice_step = 0.3;
+    Explorer explorer(config, path);
+    ASSERT_TRUE(explorer.setMap(&world.collision(), world.bounds()).ok());
+    const ExplorerDecision d = explorer.update(f, kUav, false);
+    ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
+    expectFree(world.collision(), d.path);
+    EXPECT_EQ(explorer.stats().corridor_legs, guide ? 1u : 0u) << guide;
+    if (guide) EXPECT_EQ(explorer.stats().roadmap_growths, 0u);
+  }
+}

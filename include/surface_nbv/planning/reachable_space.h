@@ -57,6 +57,8 @@ class ReachableSpace {
 
  private:
   bool cellOf(const Eigen::Vector3d& p, Eigen::Vector3i* cell) const;
+  // p's cell if filled, else its first filled 6-neighbour (in `cell`); false if neither.
+  bool filledAt(const Eigen::Vector3d& p, Eigen::Vector3i* cell) const;
   // The order of CollisionMap::clearCells: z fastest.
   size_t index(const Eigen::Vector3i& c) const {
     return (static_cast<size_t>(c.x()) * static_cast<size_t>(cells_.y()) + static_cast<size_t>(c.y())) *
