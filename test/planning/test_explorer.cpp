@@ -556,6 +556,8 @@ TEST(Explorer, CorridorGuideGivesTheLegBehindTheWall) {
     ASSERT_EQ(d.action, ExplorerAction::kFly) << d.message;
     expectFree(world.collision(), d.path);
     EXPECT_EQ(explorer.stats().corridor_legs, guide ? 1u : 0u) << guide;
-    if (guide) EXPECT_EQ(explorer.stats().roadmap_growths, 0u);
+    if (guide) {
+      EXPECT_EQ(explorer.stats().roadmap_growths, 0u);
+    }
   }
 }

@@ -227,7 +227,9 @@ TEST_F(FloodFromTheLeft, CorridorIsAShortestWayThroughTheFilledCells) {
   EXPECT_EQ(cellOf(way.back()), cellOf(to));
   for (size_t k = 0; k < way.size(); ++k) {
     EXPECT_TRUE(space.filled(cellOf(way[k]))) << k;
-    if (k > 0) EXPECT_NEAR((way[k] - way[k - 1]).norm(), h, 1e-9) << k;
+    if (k > 0) {
+      EXPECT_NEAR((way[k] - way[k - 1]).norm(), h, 1e-9) << k;
+    }
   }
   // Breadth-first distances over the reference flood's cells.
   const std::vector<uint8_t> in = referenceFill(map, start, clear);
