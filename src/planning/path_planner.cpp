@@ -170,6 +170,11 @@ struct PathPlanner::Impl {
     return si->checkMotion(from, to);
   }
 
+  // motionFree as the lattice takes it.
+  std::function<bool(const Eigen::Vector3d&, const Eigen::Vector3d&)> motionCheck() {
+    return [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return motionFree(a, b); };
+  }
+
   bool pointFree(const Eigen::Vector3d& p) {
     setPoint(from, p);
     return si->isValid(from);
@@ -207,8 +212,7 @@ struct PathPlanner::Impl {
       size_t j = next;
       while (j < n && !pointFree(points[j])) ++j;
       if (j == n) return false;
-      const auto free = [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return motionFree(a, b); };
-      const LatticeSearchResult r = latticeSearch(at, points[j], lattice_step, repair_nodes, free, should_stop);
+      const LatticeSearchResult r = latticeSearch(at, points[j], lattice_step, repair_nodes, motionCheck(), should_stop);
       *expanded += r.expanded;
       if (!r.found) return false;
       path->insert(path->end(), r.path.begin() + 1, r.path.end());
@@ -407,7 +411,8 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   bool lattice_tried = false;
   double lattice_until = lattice_cap;  // before the growth; after it (kGrowOnly), the whole cap
   bool guide_tried = false;
-  const auto lattice = [&](std::vector<Eigen::Vector3d>* path) {
+  // Asked when the graph holds no path: the guide first, then the lattice.
+  const auto fallback = [&](std::vector<Eigen::Vector3d>* path) {
     if (guide != nullptr && !guide->empty() && !guide_tried) {
       guide_tried = true;
       const double deadline = std::min(elapsed() + budget_s, lattice_until);
@@ -424,8 +429,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
     const double deadline = std::min(elapsed() + budget_s, lattice_until);
     if (elapsed() >= deadline) return false;
     const LatticeSearchResult found = latticeSearch(
-        start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes,
-        [this](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return impl_->motionFree(a, b); },
+        start.head<3>(), goal.head<3>(), config_.lattice_step, config_.lattice_max_nodes, impl_->motionCheck(),
         [&elapsed, deadline] { return elapsed() > deadline; });
     result.lattice_nodes += found.expanded;
     if (!found.found) {
@@ -442,7 +446,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   };
   std::vector<Eigen::Vector3d> raw;
   const ob::PlannerStatus status =
-      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, lattice);
+      impl_->prm->query(ptc, [&elapsed, roadmap_s] { return elapsed() > roadmap_s; }, mode, &raw, fallback);
   impl_->prm->clearQuery();
   result.roadmap_grew = impl_->prm->grew();
   if (result.roadmap_grew && lattice_tried && !result.from_lattice && !result.from_guide &&
@@ -465,9 +469,7 @@ PathResult PathPlanner::plan(const Eigen::Vector4d& start, const Eigen::Vector4d
   }
   // The modes that only grow (kGrowOnly) ask the lattice after the growth.
   lattice_until = cap;
-  if (failure != PathStatus::kExactSolution && (lattice_tried || result.from_guide || !lattice(&raw))) {
-    return finish(failure);
-  }
+  if (failure != PathStatus::kExactSolution && (lattice_tried || !fallback(&raw))) return finish(failure);
 
   // Greedy shortcutting: from each kept point jump to the farthest later
   // point reachable by a collision-free straight motion.
