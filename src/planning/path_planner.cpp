@@ -26,6 +26,7 @@
 #include "surface_nbv/map/collision_map.h"
 #include "surface_nbv/planning/lattice_search.h"
 #include "surface_nbv/util/angles.h"
+#include "surface_nbv/util/bits_hash.h"
 #include "lazy_roadmap.h"
 
 namespace ob = ompl::base;
@@ -62,11 +63,7 @@ struct PointKey {
   bool operator<(const PointKey& o) const { return bits < o.bits; }
 };
 struct PointKeyHash {
-  size_t operator()(const PointKey& k) const {
-    uint64_t h = 1469598103934665603ull;
-    for (uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull;
-    return static_cast<size_t>(h ^ (h >> 29));
-  }
+  size_t operator()(const PointKey& k) const { return hashBits(k.bits.data(), k.bits.size()); }
 };
 struct PairKeyHash {
   size_t operator()(const std::pair<PointKey, PointKey>& k) const {

@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "surface_nbv/surface/chunked_for.h"
+#include "surface_nbv/util/bits_hash.h"
 
 namespace surface_nbv {
 namespace {
@@ -65,9 +66,7 @@ bool FrontierBuilder::ViewKey::operator==(const ViewKey& o) const {
 }
 
 size_t FrontierBuilder::ViewKeyHash::operator()(const ViewKey& k) const {
-  uint64_t h = 1469598103934665603ull;
-  for (uint64_t b : k.bits) h = (h ^ b) * 1099511628211ull;
-  return static_cast<size_t>(h ^ (h >> 29));
+  return hashBits(k.bits, sizeof(k.bits) / sizeof(k.bits[0]));
 }
 
 FrontierBuilder::ViewKey FrontierBuilder::keyOf(const Viewpoint& q) {

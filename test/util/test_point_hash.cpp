@@ -1,6 +1,13 @@
 #include "surface_nbv/util/point_hash.h"
+#include "surface_nbv/util/bits_hash.h"
 
 #include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <set>
 
 namespace surface_nbv {
 namespace {
@@ -32,6 +39,27 @@ TEST(PointHash, NearestIsTheClosestWithinTheRadiusAndTheLastOfEquallyNearOnes) {
   EXPECT_EQ(hash.nearest(Eigen::Vector3d(1.5, 0.0, 0.0), 0.8), -1) << "0.9 from the nearest";
   hash.clear();
   EXPECT_EQ(hash.nearest(Eigen::Vector3d(0.0, 0.0, 0.0), 1.0), -1);
+}
+
+// hashBits keys caches by the exact bits: equal words hash equal, and the
+// word order, a sign or the last bit of a mantissa changes the hash.
+TEST(BitsHash, EqualBitsHashEqualAndNeighbouringKeysApart) {
+  const auto bitsOf = [](double x, double y, double z) {
+    const double v[3] = {x, y, z};
+    std::array<uint64_t, 3> b{};
+    std::memcpy(b.data(), v, sizeof(v));
+    return b;
+  };
+  const auto h = [](const std::array<uint64_t, 3>& b) { return hashBits(b.data(), b.size()); };
+  EXPECT_EQ(h(bitsOf(1.5, -2.0, 3.25)), h(bitsOf(1.5, -2.0, 3.25)));
+  std::set<size_t> seen;
+  const double next = std::nextafter(1.5, 2.0);
+  for (const auto& b : {bitsOf(1.5, -2.0, 3.25), bitsOf(-2.0, 1.5, 3.25), bitsOf(-1.5, -2.0, 3.25),
+                        bitsOf(next, -2.0, 3.25), bitsOf(0.0, 0.0, 0.0), bitsOf(-0.0, 0.0, 0.0)}) {
+    seen.insert(h(b));
+  }
+  EXPECT_EQ(seen.size(), 6u);
+  EXPECT_NE(hashBits(nullptr, 0), h(bitsOf(0.0, 0.0, 0.0)));
 }
 
 }  // namespace
