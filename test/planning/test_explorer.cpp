@@ -535,8 +535,6 @@ TEST(Explorer, ConfigRefusesBadValues) {
   }
 }
 
-}  // namespace
-
 // corridor_guide: with check_reachable, the first leg to a target behind the
 // wall follows the reachable space's corridor (the roadmap is empty, so the
 // guide answers before any growth), free of the wall; without it the same
@@ -561,3 +559,5 @@ TEST(Explorer, CorridorGuideGivesTheLegBehindTheWall) {
     }
   }
 }
+
+}  // namespace
