@@ -1,6 +1,8 @@
 // The whole ROS mission on the box (mission.test, mission_faults.test,
 // mission_time_limit.test): waits for planner/status DONE, checks the end
-// reason (~expected_reason, default complete), the flight time against
+// reason (~expected_reason, default complete; "a|b" accepts either, for the
+// faulted run, where lost frames and restarts can leave the last places
+// unreachable on the wall clock), the flight time against
 // ~max_flight_time when set (within ~flight_time_tolerance s), the saved map,
 // mesh and report, replays the planner's supervisor_calls.csv through a
 // MissionSupervisor built from the planner's own parameters (the same
@@ -8,6 +10,7 @@
 // others), then evaluates the mesh the planner had the mapper export.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -68,7 +71,15 @@ TEST(Mission, BoxMissionEndsWithTheExpectedReasonAndFiles) {
   ASSERT_TRUE(done) << "no DONE within the time limit; last state " << status.state << " (" << status.reason << ": "
                     << status.message << ")";
   EXPECT_GT(running, 0u);
-  EXPECT_EQ(status.reason, expected_reason) << status.message;
+  bool accepted = false;
+  for (size_t at = 0; at <= expected_reason.size();) {
+    const size_t bar = std::min(expected_reason.find('|', at), expected_reason.size());
+    accepted = accepted || status.reason == expected_reason.substr(at, bar - at);
+    at = bar + 1;
+  }
+  EXPECT_TRUE(accepted) << "ended " << status.reason << ", expected " << expected_reason << ": " << status.message;
+  // The report and the replay must agree with the reason the mission gave.
+  expected_reason = status.reason;
   EXPECT_GT(status.path_length, 5.0);
   std::printf("mission: %.1f s of flight, %.1f m, %u legs, %u full / %u local updates, %u blacklisted: %s\n",
               status.flight_time, status.path_length, status.legs, status.full_recomputes, status.local_updates,
