@@ -276,6 +276,8 @@ MissionResult MissionRunner::run() {
     event.roadmap = explorer.stats().roadmap_vertices;
     event.action = toString(d.action);
     event.reason = toString(d.reason);
+    event.message = d.message;
+    event.leg_failures = explorer.stats().leg_failures;
     const bool done = d.action == ExplorerAction::kDone;
     if (event.t >= next_progress || done) {
       event.observed = observedFraction();

@@ -81,15 +81,24 @@ Status loadTrialConfig(const TrialOptions& o, MissionConfig* config, std::string
   return config->scene.validate();
 }
 
+// A CSV field: in double quotes, a quote inside doubled (RFC 4180), a line
+// break made a space so that every row stays one line.
+std::string csvQuoted(const std::string& text) {
+  std::string out = "\"";
+  for (char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch == '\n' ? ' ' : ch);
+  return out + "\"";
+}
+
 Status writeCsvs(const std::string& dir, const MissionResult& r) {
   if (Status s = writeFlightCsv(dir + "/path.csv", r.flown_t, r.flown); !s) return s;
   std::ofstream events(dir + "/events.csv");
-  events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason,collision_ms,frontier_ms,graph_ms,tour_ms,path_ms,full\n";
+  events << "t_s,path_m,ises,inside,remaining,viewpoints,clusters,tour,observed,action,reason,collision_ms,frontier_ms,graph_ms,tour_ms,path_ms,full,x_m,y_m,z_m,yaw_rad,leg_failures,message\n";
   for (const MissionEvent& e : r.events) {
     events << e.t << "," << e.path_length << "," << e.ises << "," << e.inside << "," << e.remaining << ","
            << e.viewpoints << "," << e.clusters << "," << e.tour << "," << e.observed << "," << e.action << ","
            << e.reason << "," << e.collision_ms << "," << e.frontier_ms << "," << e.graph_ms << "," << e.tour_ms << ","
-           << e.path_ms << "," << (e.full_recompute ? 1 : 0) << "\n";
+           << e.path_ms << "," << (e.full_recompute ? 1 : 0) << "," << e.uav.x() << "," << e.uav.y() << ","
+           << e.uav.z() << "," << e.uav.w() << "," << e.leg_failures << "," << csvQuoted(e.message) << "\n";
   }
   if (!events) return Status::Error("cannot write events.csv in " + dir);
   return Status::Ok();

@@ -100,6 +100,19 @@ TEST(TrialRunner, ShortBoxTrialsWriteTheirFilesAndReports) {
     }
     EXPECT_EQ(lineCount(trial + "/path.csv"), row.frames + 1);  // a header and a pose per frame
     EXPECT_EQ(lineCount(trial + "/coverage.csv"), row.coverage_over_time.size() + 1);
+    // events.csv: a row per frontier update, the decision's message last and
+    // quoted (empty while the UAV flies its tour).
+    std::istringstream events(readText(trial + "/events.csv"));
+    std::string line;
+    ASSERT_TRUE(std::getline(events, line));
+    EXPECT_EQ(line.substr(line.rfind(",x_m")), ",x_m,y_m,z_m,yaw_rad,leg_failures,message");
+    size_t rows = 0;
+    while (std::getline(events, line)) {
+      ++rows;
+      EXPECT_EQ(line.back(), '"') << line;
+      EXPECT_EQ(std::count(line.begin(), line.end(), '"') % 2, 0) << line;
+    }
+    EXPECT_GT(rows, 2u);
     EXPECT_FALSE(fs::exists(trial + "/path_top.png"));  // no plots
   }
 

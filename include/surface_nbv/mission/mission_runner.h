@@ -36,6 +36,8 @@ struct MissionEvent {
   size_t roadmap = 0;          // the leg planner's roadmap vertices
   double observed = -1.0;      // fraction of probe points observed; -1 when not measured
   std::string action, reason;  // the Explorer's decision
+  std::string message;         // ... and its message (why it hovers, what failed)
+  size_t leg_failures = 0;     // legs failed so far
   Eigen::Vector4d uav = Eigen::Vector4d::Zero();  // the UAV's pose [x, y, z, yaw] at the update
   // Wall-clock milliseconds of this update: collision map, frontier, and the
   // Explorer's graph / tour / leg; full_recompute as ExplorerDecision's.
