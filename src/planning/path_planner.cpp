@@ -56,15 +56,10 @@ void setPoint(ob::State* state, const Eigen::Vector3d& p) {
 }
 
 // The exact bits of a point, so caches keyed by position never merge two points.
-struct PointKey {
-  std::array<uint64_t, 3> bits{};
-  explicit PointKey(const Eigen::Vector3d& p) { std::memcpy(bits.data(), p.data(), sizeof(bits)); }
-  bool operator==(const PointKey& o) const { return bits == o.bits; }
-  bool operator<(const PointKey& o) const { return bits < o.bits; }
+struct PointKey : BitsKey<3> {
+  explicit PointKey(const Eigen::Vector3d& p) : BitsKey<3>(p.data()) {}
 };
-struct PointKeyHash {
-  size_t operator()(const PointKey& k) const { return hashBits(k.bits.data(), k.bits.size()); }
-};
+using PointKeyHash = BitsKeyHash<3>;
 struct PairKeyHash {
   size_t operator()(const std::pair<PointKey, PointKey>& k) const {
     return PointKeyHash()(k.first) * 31 + PointKeyHash()(k.second);

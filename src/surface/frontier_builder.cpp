@@ -4,11 +4,9 @@
 #include <chrono>
 #include <iterator>
 #include <cmath>
-#include <cstring>
 #include <unordered_map>
 
 #include "surface_nbv/surface/chunked_for.h"
-#include "surface_nbv/util/bits_hash.h"
 
 namespace surface_nbv {
 namespace {
@@ -61,19 +59,9 @@ double unknownFraction(const VoxelRayCaster& rays, const Viewpoint& viewpoint, c
   return entered > 0 ? static_cast<double>(unknown) / static_cast<double>(entered) : 1.0;
 }
 
-bool FrontierBuilder::ViewKey::operator==(const ViewKey& o) const {
-  return std::equal(std::begin(bits), std::end(bits), std::begin(o.bits));
-}
-
-size_t FrontierBuilder::ViewKeyHash::operator()(const ViewKey& k) const {
-  return hashBits(k.bits, sizeof(k.bits) / sizeof(k.bits[0]));
-}
-
 FrontierBuilder::ViewKey FrontierBuilder::keyOf(const Viewpoint& q) {
-  ViewKey k;
   const double v[4] = {q.position.x(), q.position.y(), q.position.z(), q.yaw};
-  std::memcpy(k.bits, v, sizeof(k.bits));
-  return k;
+  return ViewKey(v);
 }
 
 std::vector<uint8_t> FrontierBuilder::nearChanges(double reach, double voxel_size) const {

@@ -62,5 +62,23 @@ TEST(BitsHash, EqualBitsHashEqualAndNeighbouringKeysApart) {
   EXPECT_NE(hashBits(nullptr, 0), h(bitsOf(0.0, 0.0, 0.0)));
 }
 
+TEST(BitsKey, KeysAreTheExactBitsWithAnOrderAndTheirHash) {
+  const double a[4] = {1.5, -2.0, 3.25, 0.5}, same[4] = {1.5, -2.0, 3.25, 0.5};
+  const double next[4] = {1.5, -2.0, 3.25, std::nextafter(0.5, 1.0)};
+  const double zero[4] = {0.0, 0.0, 0.0, 0.0}, minus_zero[4] = {-0.0, 0.0, 0.0, 0.0};
+  EXPECT_EQ(BitsKey<4>(a), BitsKey<4>(same));
+  EXPECT_FALSE(BitsKey<4>(a) == BitsKey<4>(next));
+  // 0 == -0 as doubles, but they are two keys: a cache never merges them.
+  EXPECT_FALSE(BitsKey<4>(zero) == BitsKey<4>(minus_zero));
+  // A strict order: exactly one of a < b, b < a for different keys.
+  EXPECT_NE(BitsKey<4>(a) < BitsKey<4>(next), BitsKey<4>(next) < BitsKey<4>(a));
+  EXPECT_FALSE(BitsKey<4>(a) < BitsKey<4>(same));
+  EXPECT_FALSE(BitsKey<4>(same) < BitsKey<4>(a));
+  const BitsKey<4> k(a);
+  EXPECT_EQ(BitsKeyHash<4>()(k), hashBits(k.bits.data(), 4));
+  EXPECT_NE(BitsKeyHash<4>()(BitsKey<4>(zero)), BitsKeyHash<4>()(BitsKey<4>(minus_zero)));
+  // The first three words of a 4-key are the 3-key of the same values.
+  EXPECT_EQ(BitsKey<3>(a).bits[2], k.bits[2]);
+}
 }  // namespace
 }  // namespace surface_nbv

@@ -33,6 +33,7 @@
 #include "surface_nbv/surface/viewpoint_merger.h"
 #include "surface_nbv/surface/visibility_evaluator.h"
 #include "surface_nbv/surface/voxel_ray_caster.h"
+#include "surface_nbv/util/bits_hash.h"
 #include "surface_nbv/util/status.h"
 
 namespace surface_nbv {
@@ -87,13 +88,8 @@ class FrontierBuilder {
     uint64_t steps = 0;
     double unknown_fraction = 1.0;
   };
-  struct ViewKey {
-    uint64_t bits[4];
-    bool operator==(const ViewKey& o) const;
-  };
-  struct ViewKeyHash {
-    size_t operator()(const ViewKey& k) const;
-  };
+  using ViewKey = BitsKey<4>;
+  using ViewKeyHash = BitsKeyHash<4>;
   static ViewKey keyOf(const Viewpoint& q);
   // Per block slot: within `reach` metres (max norm) of a voxel whose state
   // changed in the last extraction, as far as blocks tell (a superset).
